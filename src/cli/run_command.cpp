@@ -1,0 +1,220 @@
+#include "cli/run_command.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+#include <unistd.h>
+
+#include "cli/exit_codes.hpp"
+#include "cli/progress.hpp"
+#include "io/files.hpp"
+#include "io/input_error.hpp"
+#include "io/particle_export.hpp"
+#include "io/scene_setup.hpp"
+#include "io/stats_csv.hpp"
+
+namespace sph {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::atomic<int> interrupt_signal{0};
+
+extern "C" void on_interrupt(int signal) { interrupt_signal.store(signal); }
+
+// Stops simulating on SIGINT/SIGTERM; the outputs so far are finalised.
+struct InterruptGuard {
+    InterruptGuard() {
+        interrupt_signal.store(0);
+        previous_int_ = std::signal(SIGINT, on_interrupt);
+        previous_term_ = std::signal(SIGTERM, on_interrupt);
+    }
+    ~InterruptGuard() {
+        std::signal(SIGINT, previous_int_);
+        std::signal(SIGTERM, previous_term_);
+    }
+    void (*previous_int_)(int);
+    void (*previous_term_)(int);
+};
+
+// Creates the output folder and checks it can be written, before anything is
+// written to it.
+void prepare_output_folder(const fs::path& folder) {
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec || !fs::is_directory(folder))
+        throw InputError("command line", "--out",
+                         fmt::format("cannot create the output folder {}: {}", folder.string(),
+                                     ec ? ec.message() : "a file of that name exists"));
+    if (access(folder.c_str(), W_OK | X_OK) != 0)
+        throw InputError("command line", "--out",
+                         fmt::format("the output folder {} is not writable", folder.string()));
+}
+
+// Frames of an earlier run in the same folder would mix with this run's.
+void remove_earlier_frames(const fs::path& folder) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder / "particles", ec)) {
+        const auto name = entry.path().filename().string();
+        const auto ext = entry.path().extension().string();
+        if (name.starts_with("frame_") && (ext == ".csv" || ext == ".vtp"))
+            fs::remove(entry.path(), ec);
+    }
+    fs::remove(folder / "particles.pvd", ec);
+}
+
+struct RunRecord {
+    json document;
+    fs::path path;
+    void save(const std::string& status, std::uint64_t frames, std::uint64_t steps,
+              double simulated, double wall, const std::string& error = {}) {
+        document["status"] = status;
+        document["frames"] = frames;
+        document["steps"] = steps;
+        document["simulated_time"] = simulated;
+        document["wall_s"] = wall;
+        if (!error.empty())
+            document["error"] = error;
+        write_file_atomically(path, document.dump(2) + "\n");
+    }
+};
+
+template <int D>
+int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& options) {
+    Simulation<D> sim = make_simulation<D>(scene);
+    const Derived derived = derive(scene);
+    const std::uint64_t frames =
+        static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1;
+
+    std::vector<std::unique_ptr<FrameSink>> sinks;
+    sinks.push_back(std::make_unique<StatsCsv>(folder / "stats.csv"));
+    for (const auto& format : options.exports) {
+        fs::create_directories(folder / "particles");
+        if (format == "csv")
+            sinks.push_back(std::make_unique<ParticleCsv>(folder));
+        else if (format == "vtk")
+            sinks.push_back(std::make_unique<ParticleVtk>(folder));
+    }
+
+    RunRecord record;
+    record.path = folder / "run.json";
+    record.document = {
+        {"sphclip_version", SPHCLIP_VERSION},
+        {"command", options.command_line},
+        {"scene_file", scene.file},
+        {"scene", to_json(scene)},
+        {"derived",
+         {{"smoothing_length", derived.h},
+          {"mass", derived.mass},
+          {"dt", derived.dt},
+          {"sound_speed", derived.sound_speed}}},
+        {"particles", sim.state().size()},
+        {"threads", omp_get_max_threads()},
+        {"solver", std::string(sim.solver().name())},
+        {"neighbour_search", std::string(sim.search().name())},
+        {"outputs",
+         {{"stats", "stats.csv"}, {"exports", options.exports}, {"png", false}, {"mp4", false}}},
+    };
+    record.save("running", 0, 0, 0, 0);
+
+    if (!options.quiet) {
+        fmt::print("sphclip: {} ({}D, {} solver): {} particles, h = {:.4g} m, m = {:.4g} kg, "
+                   "dt = {:.4g} s, {} frames of {:.4g} s -> {}\n",
+                   scene.name, D, scene.solver.name, sim.state().size(), derived.h, derived.mass,
+                   derived.dt, frames, scene.duration, folder.string());
+        if (options.png || options.mp4)
+            fmt::print("sphclip: this build has no renderer yet; writing data outputs only "
+                       "(stats.csv, run.json{})\n",
+                       options.exports.empty() ? "" : ", particle exports");
+    }
+
+    Progress progress(!options.quiet && isatty(STDOUT_FILENO));
+    InterruptGuard interrupt_guard;
+    const auto start = std::chrono::steady_clock::now();
+    auto wall = [&start] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    auto finish_sinks = [&sinks] {
+        for (auto& sink : sinks)
+            sink->finish();
+    };
+
+    Snapshot snapshot;
+    std::uint64_t written = 0;
+    try {
+        for (std::uint64_t k = 0; k < frames; ++k) {
+            // A frame is taken when simulation time crosses k / fps.
+            const double frame_time = double(k) / scene.fps;
+            const double tolerance = 1e-9 * sim.params().dt;
+            while (sim.time() < frame_time - tolerance) {
+                if (interrupt_signal.load() != 0)
+                    break;
+                sim.step();
+            }
+            if (interrupt_signal.load() != 0) {
+                progress.done();
+                finish_sinks();
+                record.save("interrupted", written, sim.steps(), sim.time(), wall(),
+                            fmt::format("stopped by signal {}", interrupt_signal.load()));
+                fmt::print(stderr, "sphclip: interrupted at t = {:.4g} s; {} frames kept in {}\n",
+                           sim.time(), written, folder.string());
+                return exit_interrupted;
+            }
+            sim.update_fields();
+            snapshot.frame = k;
+            snapshot.steps = sim.steps();
+            snapshot.time = sim.time();
+            snapshot.dt = sim.params().dt;
+            snapshot.stats = measure_frame(sim.params(), sim.state());
+            snapshot.wall_seconds = wall();
+            copy_fields(sim.state(), snapshot);
+            for (auto& sink : sinks)
+                sink->write(snapshot);
+            ++written;
+            progress.update(k, frames, sim.time(), sim.steps(), wall());
+        }
+    } catch (const NonFiniteError& e) {
+        progress.done();
+        finish_sinks();
+        record.save("non_finite", written, sim.steps(), sim.time(), wall(), e.what());
+        fmt::print(stderr,
+                   "sphclip: error: {}\nsphclip: the {} frames before it are kept in {}. Try a "
+                   "smaller solver.dt, a smaller material.bulk_modulus or a larger "
+                   "material.viscosity.\n",
+                   e.what(), written, folder.string());
+        return exit_non_finite;
+    }
+    progress.done();
+    finish_sinks();
+    const double seconds = wall();
+    record.save("completed", written, sim.steps(), sim.time(), seconds);
+    if (!options.quiet)
+        fmt::print("sphclip: done: {} steps, {} frames in {:.2f} s ({:.3g} particle-steps/s)\n",
+                   sim.steps(), written, seconds,
+                   seconds > 0 ? double(sim.steps()) * double(sim.state().size()) / seconds : 0.0);
+    return exit_success;
+}
+
+} // namespace
+
+int run_command(const RunOptions& options) {
+    const Scene scene = options.scene ? load_scene(*options.scene, options.overrides)
+                                      : default_scene(options.overrides);
+    const fs::path folder = options.out ? *options.out : fs::path("out") / scene.name;
+    prepare_output_folder(folder);
+    remove_earlier_frames(folder);
+    if (options.threads > 0)
+        omp_set_num_threads(options.threads);
+    return scene.dimension == 2 ? run_clip<2>(scene, folder, options)
+                                : run_clip<3>(scene, folder, options);
+}
+
+} // namespace sph

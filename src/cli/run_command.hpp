@@ -1,0 +1,28 @@
+#pragma once
+// `sphclip run`: scene -> simulation -> per-frame outputs.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/scene.hpp"
+
+namespace sph {
+
+struct RunOptions {
+    std::optional<std::filesystem::path> scene; // none: the built-in scene
+    std::optional<std::filesystem::path> out;   // none: out/<scene name>/
+    std::vector<Override> overrides;            // --set, then --duration, --fps
+    int threads = 0;                            // 0: all cores
+    std::vector<std::string> exports;           // "csv", "vtk"
+    bool png = true;
+    bool mp4 = true;
+    bool quiet = false;
+    std::string command_line; // recorded in run.json
+};
+
+// Returns the process exit code; throws InputError for bad input.
+int run_command(const RunOptions& options);
+
+} // namespace sph

@@ -1,0 +1,684 @@
+#include "io/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "io/input_error.hpp"
+#include "sph/kernels.hpp"
+#include "sph/lattice.hpp"
+#include "sph/neighbours/neighbour_search.hpp"
+#include "sph/solvers/solver.hpp"
+
+namespace sph {
+
+using nlohmann::json;
+
+namespace {
+
+// Levenshtein distance, for "did you mean" suggestions.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j)
+        row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+std::string closest(std::string_view word, const std::vector<std::string>& candidates) {
+    std::string best;
+    std::size_t best_distance = std::string::npos;
+    for (const auto& c : candidates) {
+        const std::size_t d = edit_distance(word, c);
+        if (d < best_distance) {
+            best_distance = d;
+            best = c;
+        }
+    }
+    // Only suggest what is plausibly a typo.
+    return best_distance <= std::max<std::size_t>(2, word.size() / 2) ? best : std::string();
+}
+
+std::string describe(const json& value) {
+    std::string text = value.dump();
+    if (text.size() > 40)
+        text = text.substr(0, 37) + "...";
+    return fmt::format("{} ({})", value.type_name(), text);
+}
+
+// "fluid.blocks[3].min" -> "fluid.blocks[].min": the key's place in the schema.
+std::string generic_path(const std::string& path) {
+    static const std::regex index(R"(\[\d+\])");
+    return std::regex_replace(path, index, "[]");
+}
+
+std::string parent_of(const std::string& path) {
+    const auto dot = path.rfind('.');
+    return dot == std::string::npos ? std::string() : path.substr(0, dot);
+}
+
+std::string last_segment(const std::string& path) {
+    const auto dot = path.rfind('.');
+    return dot == std::string::npos ? path : path.substr(dot + 1);
+}
+
+std::string format_vector(const Vec3& v, int dimension) {
+    return fmt::format("[{}]", fmt::join(v.begin(), v.begin() + dimension, ", "));
+}
+
+enum class Bound { any, positive, non_negative };
+
+// Reads fields by dotted path with type and range checks. Every key it is
+// asked for is recorded: the reading code is the schema, so the unknown-key
+// check and `sphclip keys` cannot drift from it.
+class FieldReader {
+  public:
+    FieldReader(const json& root, std::string file, std::set<std::string> overridden)
+        : root_(root), file_(std::move(file)), overridden_(std::move(overridden)) {}
+
+    [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
+        const bool from_command_line = overridden_.contains(path);
+        throw InputError(file_, path + (from_command_line ? " (from --set)" : ""), problem);
+    }
+
+    // nullptr when absent (or null).
+    const json* find(const std::string& path) const {
+        const json* node = &root_;
+        std::size_t begin = 0;
+        while (begin <= path.size()) {
+            std::size_t end = path.find('.', begin);
+            if (end == std::string::npos)
+                end = path.size();
+            std::string segment = path.substr(begin, end - begin);
+            std::optional<std::size_t> index;
+            if (auto bracket = segment.find('['); bracket != std::string::npos) {
+                index = std::stoul(segment.substr(bracket + 1));
+                segment.resize(bracket);
+            }
+            if (!node->is_object())
+                return nullptr;
+            auto it = node->find(segment);
+            if (it == node->end() || it->is_null())
+                return nullptr;
+            node = &*it;
+            if (index) {
+                if (!node->is_array() || *index >= node->size())
+                    return nullptr;
+                node = &(*node)[*index];
+            }
+            begin = end + 1;
+        }
+        return node;
+    }
+
+    double number(const std::string& path, double fallback, const char* unit, const char* doc,
+                  Bound bound = Bound::any) {
+        record(path, "number", unit, fmt::format("{}", fallback), doc);
+        const json* v = find(path);
+        return v ? checked_number(path, *v, bound) : fallback;
+    }
+
+    std::optional<double> optional_number(const std::string& path, const char* unit,
+                                          const std::string& default_text, const char* doc,
+                                          Bound bound = Bound::any) {
+        record(path, "number or null", unit, default_text, doc);
+        const json* v = find(path);
+        return v ? std::optional(checked_number(path, *v, bound)) : std::nullopt;
+    }
+
+    int integer(const std::string& path, int fallback, int min, int max, const char* doc) {
+        record(path, "integer", "", std::to_string(fallback), doc);
+        const json* v = find(path);
+        return v ? checked_integer(path, *v, min, max) : fallback;
+    }
+
+    std::string choice(const std::string& path, const std::string& fallback,
+                       const std::vector<std::string>& allowed, const char* doc) {
+        record(path, "string", "", fallback,
+               fmt::format("{} One of: {}.", doc, fmt::join(allowed, ", ")));
+        const json* v = find(path);
+        if (!v)
+            return fallback;
+        if (!v->is_string())
+            fail(path, "expected a string, got " + describe(*v));
+        const auto text = v->get<std::string>();
+        if (std::find(allowed.begin(), allowed.end(), text) == allowed.end()) {
+            const auto guess = closest(text, allowed);
+            fail(path, fmt::format("unknown value \"{}\"{}; expected one of: {}", text,
+                                   guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
+                                   fmt::join(allowed, ", ")));
+        }
+        return text;
+    }
+
+    Vec3 vector(const std::string& path, const Vec3& fallback, int dimension, const char* unit,
+                const char* doc) {
+        record(path, fmt::format("array of {} numbers", dimension), unit,
+               format_vector(fallback, dimension), doc);
+        const json* v = find(path);
+        return v ? checked_vector(path, *v, dimension) : fallback;
+    }
+
+    std::optional<Vec3> optional_vector(const std::string& path, int dimension, const char* unit,
+                                        const std::string& default_text, const char* doc) {
+        record(path, fmt::format("array of {} numbers or null", dimension), unit, default_text,
+               doc);
+        const json* v = find(path);
+        return v ? std::optional(checked_vector(path, *v, dimension)) : std::nullopt;
+    }
+
+    std::array<int, 2> image_size(const std::string& path, std::array<int, 2> fallback,
+                                  const char* doc) {
+        record(path, "array of 2 integers", "px", fmt::format("[{}, {}]", fallback[0], fallback[1]),
+               doc);
+        const json* v = find(path);
+        if (!v)
+            return fallback;
+        if (!v->is_array() || v->size() != 2)
+            fail(path, "expected an array of 2 integers [width, height], got " + describe(*v));
+        return {checked_integer(path, (*v)[0], 1, 16384), checked_integer(path, (*v)[1], 1, 16384)};
+    }
+
+    // A list of objects; returns the element count (0 when absent).
+    std::size_t list(const std::string& path, const char* doc) {
+        record(path, "array of objects", "", "", doc);
+        const json* v = find(path);
+        if (!v)
+            return 0;
+        if (!v->is_array())
+            fail(path, "expected an array, got " + describe(*v));
+        for (std::size_t i = 0; i < v->size(); ++i)
+            if (!(*v)[i].is_object())
+                fail(fmt::format("{}[{}]", path, i), "expected an object, got " + describe((*v)[i]));
+        return v->size();
+    }
+
+    bool present(const std::string& path) const { return find(path) != nullptr; }
+
+    bool is_object_key(const std::string& path) const {
+        const auto prefix = path + ".";
+        return std::any_of(known_.begin(), known_.end(),
+                           [&](const std::string& k) { return k.starts_with(prefix); });
+    }
+
+    // Names the first key in the scene that no reader asked for.
+    void reject_unknown_keys() const { check_object(root_, ""); }
+
+    const std::vector<KeyDoc>& docs() const { return docs_; }
+
+  private:
+    void record(const std::string& path, std::string type, const std::string& unit,
+                std::string default_value, std::string doc) {
+        const auto generic = generic_path(path);
+        if (known_.insert(generic).second)
+            docs_.push_back({generic, std::move(type), unit, std::move(default_value),
+                             std::move(doc)});
+    }
+
+    double checked_number(const std::string& path, const json& v, Bound bound) const {
+        if (!v.is_number())
+            fail(path, "expected a number, got " + describe(v));
+        const double x = v.get<double>();
+        if (!std::isfinite(x))
+            fail(path, "expected a finite number");
+        if (bound == Bound::positive && !(x > 0))
+            fail(path, fmt::format("must be greater than 0, got {}", x));
+        if (bound == Bound::non_negative && x < 0)
+            fail(path, fmt::format("must not be negative, got {}", x));
+        return x;
+    }
+
+    int checked_integer(const std::string& path, const json& v, int min, int max) const {
+        if (!v.is_number())
+            fail(path, "expected an integer, got " + describe(v));
+        const double x = v.get<double>();
+        if (x != std::floor(x))
+            fail(path, fmt::format("expected an integer, got {}", x));
+        if (x < min || x > max)
+            fail(path, fmt::format("must be between {} and {}, got {}", min, max, x));
+        return static_cast<int>(x);
+    }
+
+    Vec3 checked_vector(const std::string& path, const json& v, int dimension) const {
+        if (!v.is_array() || static_cast<int>(v.size()) != dimension)
+            fail(path, fmt::format("expected an array of {} numbers (the scene is {}D), got {}",
+                                   dimension, dimension, describe(v)));
+        Vec3 out{0, 0, 0};
+        for (int a = 0; a < dimension; ++a) {
+            const std::string element = fmt::format("{}[{}]", path, a);
+            if (!v[a].is_number())
+                fail(element, "expected a number, got " + describe(v[a]));
+            out[a] = v[a].get<double>();
+            if (!std::isfinite(out[a]))
+                fail(element, "expected a finite number");
+        }
+        return out;
+    }
+
+    void check_object(const json& object, const std::string& prefix) const {
+        for (auto it = object.begin(); it != object.end(); ++it) {
+            const std::string path = prefix.empty() ? it.key() : prefix + "." + it.key();
+            const std::string generic = generic_path(path);
+            if (known_.contains(generic)) {
+                if (it->is_array() && is_list(generic))
+                    for (std::size_t i = 0; i < it->size(); ++i)
+                        check_object((*it)[i], fmt::format("{}[{}]", path, i));
+                continue;
+            }
+            if (is_object_key(generic)) {
+                if (it->is_object())
+                    check_object(*it, path);
+                else if (!it->is_null())
+                    fail(path, "expected an object, got " + describe(*it));
+                continue;
+            }
+            reject(path, generic);
+        }
+    }
+
+    bool is_list(const std::string& generic) const {
+        const auto prefix = generic + "[].";
+        return std::any_of(known_.begin(), known_.end(),
+                           [&](const std::string& k) { return k.starts_with(prefix); });
+    }
+
+    [[noreturn]] void reject(const std::string& path, const std::string& generic) const {
+        // Suggest among the keys beside it first, then anywhere in the scene.
+        const std::string parent = parent_of(generic);
+        std::vector<std::string> siblings, all;
+        for (const auto& k : known_) {
+            all.push_back(k);
+            if (parent_of(k) == parent)
+                siblings.push_back(last_segment(k));
+        }
+        for (const auto& k : known_) // groups are keys too
+            for (std::string p = parent_of(k); !p.empty(); p = parent_of(p))
+                if (parent_of(p) == parent)
+                    siblings.push_back(last_segment(p));
+        std::string guess = closest(last_segment(generic), siblings);
+        if (!guess.empty())
+            guess = parent.empty() ? guess : parent_of(path) + "." + guess;
+        else
+            guess = closest(generic, all);
+        fail(path, "unknown key" +
+                       (guess.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", guess)));
+    }
+
+    const json& root_;
+    std::string file_;
+    std::set<std::string> overridden_;
+    std::set<std::string> known_;
+    std::vector<KeyDoc> docs_;
+};
+
+// Sets root[path] = value for `--set path=value`, creating objects on the way.
+void apply_override(json& root, const Override& o, const std::string& file) {
+    const std::string field = o.key + " (from --set)";
+    if (o.key.empty())
+        throw InputError(file, "--set", "expected KEY=VALUE, got an empty key");
+    // JSON when it parses as JSON, else the text itself as a string.
+    json value;
+    try {
+        value = json::parse(o.value);
+    } catch (const json::parse_error&) {
+        value = o.value;
+    }
+    json* node = &root;
+    std::size_t begin = 0;
+    while (true) {
+        std::size_t end = o.key.find('.', begin);
+        const bool last = end == std::string::npos;
+        if (last)
+            end = o.key.size();
+        const std::string segment = o.key.substr(begin, end - begin);
+        if (segment.empty())
+            throw InputError(file, field, "empty segment in the key");
+        if (node->is_array()) {
+            // A numeric segment indexes a list: fluid.blocks.0.min=[...]
+            if (!std::all_of(segment.begin(), segment.end(), ::isdigit))
+                throw InputError(file, field,
+                                 fmt::format("'{}' is a list; index it with a number",
+                                             o.key.substr(0, begin - 1)));
+            const std::size_t index = std::stoul(segment);
+            if (index > node->size())
+                throw InputError(file, field,
+                                 fmt::format("index {} is past the end of a list of {}", index,
+                                             node->size()));
+            if (index == node->size())
+                node->push_back(last ? json() : json::object());
+            node = &(*node)[index];
+        } else {
+            if (node->is_null())
+                *node = json::object();
+            if (!node->is_object())
+                throw InputError(file, field,
+                                 fmt::format("'{}' is not an object", o.key.substr(0, begin - 1)));
+            node = &(*node)[segment];
+        }
+        if (last)
+            break;
+        begin = end + 1;
+    }
+    *node = std::move(value);
+}
+
+std::string override_path(const std::string& key) {
+    // fluid.blocks.0.min -> fluid.blocks[0].min, the form messages use.
+    static const std::regex index(R"(\.(\d+)(?=\.|$))");
+    return std::regex_replace(key, index, "[$1]");
+}
+
+double default_smoothing_ratio(int dimension) { return dimension == 2 ? 2.5 : 2.2; }
+
+// Rough memory of one particle: state, neighbour list, hash lookup, snapshot.
+double bytes_per_particle(int dimension, double smoothing_ratio) {
+    const double neighbours = dimension == 2
+                                  ? M_PI * smoothing_ratio * smoothing_ratio
+                                  : 4.0 / 3.0 * M_PI * std::pow(smoothing_ratio, 3);
+    return 3 * dimension * 8 + 2 * 8 + 4 + 4 * neighbours + 4 + 8 + 4 + 2 * dimension * 8 + 2 * 8 +
+           4;
+}
+
+double physical_memory_bytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES);
+    const long page_size = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page_size > 0 ? double(pages) * double(page_size) : 0;
+}
+
+Scene read_fields(const json& root, const std::string& file, std::set<std::string> overridden,
+                  std::vector<KeyDoc>* docs) {
+    FieldReader r(root, file, std::move(overridden));
+    Scene s;
+    s.file = file;
+    const Scene d; // defaults
+
+    s.dimension = r.integer("dimension", d.dimension, 2, 3, "Spatial dimension: 2 or 3.");
+    const int dim = s.dimension;
+    s.duration = r.number("duration", d.duration, "s", "Simulated time of the clip.",
+                          Bound::positive);
+    s.fps = r.number("fps", d.fps, "1/s", "Frames per simulated second.", Bound::positive);
+
+    s.domain.min = r.vector("domain.min", d.domain.min, dim, "m", "Lower corner of the walls' box.");
+    s.domain.max = r.vector("domain.max", d.domain.max, dim, "m", "Upper corner of the walls' box.");
+
+    s.fluid.spacing = r.number("fluid.spacing", d.fluid.spacing, "m",
+                               "Lattice spacing of the particles in the fluid blocks.",
+                               Bound::positive);
+    const std::size_t block_count =
+        r.list("fluid.blocks", "Boxes filled with fluid particles on the lattice.");
+    if (r.present("fluid.blocks"))
+        s.fluid.blocks.assign(block_count, FluidBlock{});
+    for (std::size_t i = 0; i < std::max<std::size_t>(block_count, 1); ++i) {
+        // With no list in the scene the default block is read (and documented).
+        const std::string p = fmt::format("fluid.blocks[{}]", i);
+        FluidBlock fallback = d.fluid.blocks[0];
+        FluidBlock b;
+        b.min = r.vector(p + ".min", fallback.min, dim, "m", "Lower corner of the block.");
+        b.max = r.vector(p + ".max", fallback.max, dim, "m", "Upper corner of the block.");
+        b.velocity = r.vector(p + ".velocity", fallback.velocity, dim, "m/s",
+                              "Initial velocity of the block's particles.");
+        if (i < s.fluid.blocks.size())
+            s.fluid.blocks[i] = b;
+    }
+    s.fluid.smoothing_ratio =
+        r.optional_number("fluid.smoothing_ratio", "", "2.5 (2D), 2.2 (3D)",
+                          "Support radius h as a multiple of the spacing.", Bound::positive);
+    s.fluid.smoothing_length = r.optional_number(
+        "fluid.smoothing_length", "m", "ratio x spacing",
+        "Support radius h of the kernels (the seed's interaction radius); overrides the ratio.",
+        Bound::positive);
+    s.fluid.mass = r.optional_number(
+        "fluid.mass", "kg", "rest density on the lattice",
+        "Mass of each particle; by default the mass that gives a lattice particle exactly the "
+        "rest density.",
+        Bound::positive);
+
+    s.material.rest_density = r.number("material.rest_density", d.material.rest_density,
+                                       "kg/m^3", "Rest density rho0.", Bound::positive);
+    s.material.bulk_modulus =
+        r.number("material.bulk_modulus", d.material.bulk_modulus, "Pa",
+                 "Bulk modulus K of the linear law p = K (rho - rho0); speed of sound "
+                 "sqrt(K / rho0).",
+                 Bound::positive);
+    s.material.viscosity = r.number("material.viscosity", d.material.viscosity, "Pa.s",
+                                    "Dynamic viscosity mu.", Bound::non_negative);
+
+    s.solver.name = r.choice("solver.name", d.solver.name, solver_names(), "Solver.");
+    s.solver.dt = r.optional_number(
+        "solver.dt", "s", "from stability limits",
+        "Fixed time step; by default min(0.4 h / c, 0.125 h^2 rho0 / mu, 0.25 sqrt(h / |g|)).",
+        Bound::positive);
+    s.solver.neighbour_search = r.choice("solver.neighbour_search", d.solver.neighbour_search,
+                                         neighbour_search_names(), "Neighbour search.");
+
+    // A scene that gives an `effects` object gets exactly the effects it lists.
+    const auto gravity = r.optional_vector(
+        "effects.gravity", dim, "m/s^2", format_vector(*d.effects.gravity, dim),
+        "Gravity effect: a uniform acceleration. Absent from an `effects` object the scene "
+        "gives (or null): no gravity.");
+    s.effects.gravity = r.present("effects") ? gravity : d.effects.gravity;
+
+    s.render.size = r.image_size("render.size", d.render.size, "Image width and height.");
+    s.render.colour = r.choice("render.colour", d.render.colour, {"velocity", "density", "pressure"},
+                               "Field the particles are coloured by.");
+    s.render.backend = r.choice("render.backend", d.render.backend, {"auto", "egl", "osmesa"},
+                                "Headless GL context.");
+    s.render.camera.position =
+        r.optional_vector("render.camera.position", 3, "m", "frames the domain",
+                          "Camera position (3D scenes).");
+    s.render.camera.target = r.optional_vector("render.camera.target", 3, "m", "domain centre",
+                                               "Point the camera looks at (3D scenes).");
+    s.render.camera.fov = r.number("render.camera.fov", d.render.camera.fov, "degrees",
+                                   "Vertical field of view (3D scenes).", Bound::positive);
+
+    r.reject_unknown_keys();
+    if (docs)
+        *docs = r.docs();
+
+    // Checks that involve several fields.
+    for (int a = 0; a < dim; ++a)
+        if (!(s.domain.min[a] < s.domain.max[a]))
+            r.fail("domain", fmt::format("min must be below max on every axis (axis {}: {} >= {})",
+                                         "xyz"[a], s.domain.min[a], s.domain.max[a]));
+    if (s.render.camera.fov >= 180)
+        r.fail("render.camera.fov", fmt::format("must be below 180 degrees, got {}",
+                                                s.render.camera.fov));
+    if (s.fluid.blocks.empty())
+        r.fail("fluid.blocks", "the scene has no fluid: give at least one block");
+    const double ratio = s.fluid.smoothing_ratio.value_or(default_smoothing_ratio(dim));
+    const double h = s.fluid.smoothing_length.value_or(ratio * s.fluid.spacing);
+    double total = 0;
+    for (std::size_t i = 0; i < s.fluid.blocks.size(); ++i) {
+        const auto& b = s.fluid.blocks[i];
+        const std::string p = fmt::format("fluid.blocks[{}]", i);
+        double count = 1;
+        for (int a = 0; a < dim; ++a) {
+            if (!(b.min[a] < b.max[a]))
+                r.fail(p, fmt::format("min must be below max on every axis (axis {}: {} >= {})",
+                                      "xyz"[a], b.min[a], b.max[a]));
+            const double tolerance = 1e-9 * (s.domain.max[a] - s.domain.min[a]);
+            if (b.min[a] < s.domain.min[a] - tolerance || b.max[a] > s.domain.max[a] + tolerance)
+                r.fail(p, fmt::format("the block [{}, {}] on axis {} is outside the domain [{}, {}]",
+                                      b.min[a], b.max[a], "xyz"[a], s.domain.min[a],
+                                      s.domain.max[a]));
+            // In floating point so that absurd requests are caught before any cast.
+            count *= std::floor((b.max[a] - b.min[a]) / s.fluid.spacing + 1e-9);
+        }
+        if (count < 1)
+            r.fail(p, fmt::format("the block is thinner than one spacing ({} m) and holds no "
+                                  "particle",
+                                  s.fluid.spacing));
+        total += count;
+    }
+    const double bytes = total * bytes_per_particle(dim, h / s.fluid.spacing);
+    const double available = physical_memory_bytes();
+    if (total > 4.0e9 || (available > 0 && bytes > 0.8 * available))
+        r.fail("fluid", fmt::format("the blocks would hold {:.3g} particles, needing about {:.3g} "
+                                    "GiB of memory (this machine has {:.3g} GiB); use a larger "
+                                    "fluid.spacing or smaller blocks",
+                                    total, bytes / (1 << 30), available / (1 << 30)));
+    // Cells are indexed by 64-bit integers: keep coordinates / h far from overflow.
+    for (int a = 0; a < dim; ++a)
+        if (std::max(std::abs(s.domain.min[a]), std::abs(s.domain.max[a])) / h > 1e15)
+            r.fail("domain", fmt::format("coordinates up to {} m are too far from the origin for "
+                                         "h = {} m",
+                                         std::max(std::abs(s.domain.min[a]),
+                                                  std::abs(s.domain.max[a])),
+                                         h));
+    return s;
+}
+
+json parse_json_text(const std::string& text, const std::string& file) {
+    try {
+        return json::parse(text, nullptr, true, /*ignore_comments=*/true);
+    } catch (const json::parse_error& e) {
+        // Line and column from the byte offset nlohmann reports.
+        const std::size_t offset = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+        const std::size_t line = 1 + std::count(text.begin(), text.begin() + offset, '\n');
+        const std::size_t line_start = text.rfind('\n', offset == 0 ? 0 : offset - 1);
+        const std::size_t column = line_start == std::string::npos ? offset + 1 : offset - line_start;
+        std::string detail = e.what();
+        if (auto colon = detail.find(": ", detail.find("column")); colon != std::string::npos)
+            detail = detail.substr(colon + 2);
+        throw InputError(file, "",
+                         fmt::format("invalid JSON at line {}, column {}: {}", line, column, detail));
+    }
+}
+
+} // namespace
+
+Scene parse_scene(const std::string& text, const std::string& file_label,
+                  const std::vector<Override>& overrides) {
+    json root = parse_json_text(text, file_label);
+    if (!root.is_object())
+        throw InputError(file_label, "", "a scene is a JSON object, got " + describe(root));
+    std::set<std::string> overridden;
+    for (const auto& o : overrides) {
+        apply_override(root, o, file_label);
+        overridden.insert(override_path(o.key));
+    }
+    return read_fields(root, file_label, std::move(overridden), nullptr);
+}
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+    std::ifstream in(file, std::ios::binary);
+    std::error_code ec;
+    if (!in || std::filesystem::is_directory(file, ec))
+        throw InputError(file.string(), "", "cannot read the scene file (missing or unreadable)");
+    std::stringstream text;
+    text << in.rdbuf();
+    Scene s = parse_scene(text.str(), file.string(), overrides);
+    s.name = file.stem().string();
+    return s;
+}
+
+Scene default_scene(const std::vector<Override>& overrides) {
+    return parse_scene("{}", "built-in scene", overrides);
+}
+
+std::vector<KeyDoc> scene_keys() {
+    std::vector<KeyDoc> docs;
+    read_fields(json::object(), "built-in scene", {}, &docs);
+    return docs;
+}
+
+Derived derive(const Scene& s) {
+    Derived d;
+    const int dim = s.dimension;
+    const double ratio = s.fluid.smoothing_ratio.value_or(default_smoothing_ratio(dim));
+    d.h = s.fluid.smoothing_length.value_or(ratio * s.fluid.spacing);
+    if (s.fluid.mass) {
+        d.mass = *s.fluid.mass;
+    } else {
+        // The seed's density kernel; a lattice particle gets exactly rho0.
+        const double sum = dim == 2 ? lattice_kernel_sum<2>(Poly6<2>(d.h), s.fluid.spacing)
+                                    : lattice_kernel_sum<3>(Poly6<3>(d.h), s.fluid.spacing);
+        d.mass = s.material.rest_density / sum;
+    }
+    d.sound_speed = std::sqrt(s.material.bulk_modulus / s.material.rest_density);
+    if (s.solver.dt) {
+        d.dt = *s.solver.dt;
+    } else {
+        // Acoustic CFL, viscous diffusion and body-force limits (Monaghan 1992;
+        // Morris et al. 1997, eqs. 10-11), each with its customary safety factor.
+        d.dt = 0.4 * d.h / d.sound_speed;
+        if (s.material.viscosity > 0)
+            d.dt = std::min(d.dt, 0.125 * d.h * d.h * s.material.rest_density /
+                                      s.material.viscosity);
+        if (s.effects.gravity) {
+            double g2 = 0;
+            for (int a = 0; a < dim; ++a)
+                g2 += (*s.effects.gravity)[a] * (*s.effects.gravity)[a];
+            if (g2 > 0)
+                d.dt = std::min(d.dt, 0.25 * std::sqrt(d.h / std::sqrt(g2)));
+        }
+    }
+    for (const auto& b : s.fluid.blocks) {
+        std::size_t count = 1;
+        for (int a = 0; a < dim; ++a)
+            count *= lattice_count(b.min[a], b.max[a], s.fluid.spacing);
+        d.particles += count;
+    }
+    return d;
+}
+
+json to_json(const Scene& s) {
+    const int dim = s.dimension;
+    const Derived d = derive(s);
+    auto vec = [dim](const Vec3& v) { return std::vector<double>(v.begin(), v.begin() + dim); };
+    auto optional_vec = [](const std::optional<Vec3>& v) {
+        return v ? json(std::vector<double>(v->begin(), v->end())) : json();
+    };
+    json blocks = json::array();
+    for (const auto& b : s.fluid.blocks)
+        blocks.push_back({{"min", vec(b.min)}, {"max", vec(b.max)}, {"velocity", vec(b.velocity)}});
+    json effects = json::object();
+    if (s.effects.gravity)
+        effects["gravity"] = vec(*s.effects.gravity);
+    return {
+        {"dimension", dim},
+        {"duration", s.duration},
+        {"fps", s.fps},
+        {"domain", {{"min", vec(s.domain.min)}, {"max", vec(s.domain.max)}}},
+        {"fluid",
+         {{"spacing", s.fluid.spacing},
+          {"blocks", blocks},
+          {"smoothing_ratio", d.h / s.fluid.spacing},
+          {"smoothing_length", d.h},
+          {"mass", d.mass}}},
+        {"material",
+         {{"rest_density", s.material.rest_density},
+          {"bulk_modulus", s.material.bulk_modulus},
+          {"viscosity", s.material.viscosity}}},
+        {"solver",
+         {{"name", s.solver.name}, {"dt", d.dt}, {"neighbour_search", s.solver.neighbour_search}}},
+        {"effects", effects},
+        {"render",
+         {{"size", s.render.size},
+          {"colour", s.render.colour},
+          {"backend", s.render.backend},
+          {"camera",
+           {{"position", optional_vec(s.render.camera.position)},
+            {"target", optional_vec(s.render.camera.target)},
+            {"fov", s.render.camera.fov}}}}},
+    };
+}
+
+} // namespace sph

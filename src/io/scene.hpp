@@ -1,0 +1,111 @@
+#pragma once
+// The scene: everything about one clip. A plain struct with a default and a
+// unit on every field (the defaults are the built-in scene, a 2D dam break
+// after Martin & Moyce 1952), filled from a JSON scene file and overridden by
+// `--set KEY=VALUE`. Vectors hold 3 components; a 2D scene uses the first 2.
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace sph {
+
+using Vec3 = std::array<double, 3>;
+
+struct FluidBlock {
+    Vec3 min{0, 0, 0};           // m
+    Vec3 max{0.05715, 0.1143, 0}; // m
+    Vec3 velocity{0, 0, 0};      // m/s, initial velocity of its particles
+};
+
+struct Scene {
+    std::string name = "default";       // output folder name: the file's stem
+    std::string file = "built-in scene"; // where it came from, for messages
+
+    int dimension = 2;     // 2 or 3
+    double duration = 1.0; // s of simulated time
+    double fps = 30;       // frames per simulated second
+
+    struct Domain {
+        Vec3 min{0, 0, 0};           // m
+        Vec3 max{0.4, 0.25, 0.15};   // m
+    } domain;
+
+    struct Fluid {
+        double spacing = 0.05715 / 40;       // m, lattice spacing of the blocks
+        std::vector<FluidBlock> blocks{FluidBlock{}};
+        std::optional<double> smoothing_ratio; // h / spacing; default 2.5 (2D), 2.2 (3D)
+        std::optional<double> smoothing_length; // m, overrides the ratio
+        std::optional<double> mass;             // kg; default: rest density on the lattice
+    } fluid;
+
+    struct Material {
+        double rest_density = 1000; // kg/m^3
+        double bulk_modulus = 2e5;  // Pa
+        double viscosity = 1.0;     // Pa.s (damps the seed model; see README)
+    } material;
+
+    struct Solver {
+        std::string name = "seed";
+        std::optional<double> dt; // s; default from the stability limits
+        std::string neighbour_search = "hash";
+    } solver;
+
+    // Each present key is an effect in the step; an absent one costs nothing.
+    struct Effects {
+        std::optional<Vec3> gravity = Vec3{0, -9.81, 0}; // m/s^2
+    } effects;
+
+    struct Render {
+        std::array<int, 2> size{1280, 720}; // px
+        std::string colour = "velocity";    // density | velocity | pressure
+        std::string backend = "auto";       // auto | egl | osmesa
+        struct Camera {
+            std::optional<Vec3> position; // m; default frames the domain
+            std::optional<Vec3> target;   // m; default the domain centre
+            double fov = 40;              // degrees, vertical (3D)
+        } camera;
+    } render;
+};
+
+// Values derived from the scene (documented in the README).
+struct Derived {
+    double h = 0;           // m, support radius
+    double mass = 0;        // kg
+    double dt = 0;          // s
+    double sound_speed = 0; // m/s, sqrt(K / rho0)
+    std::size_t particles = 0;
+};
+
+// One documented scene key, collected while reading (for `sphclip keys`).
+struct KeyDoc {
+    std::string path, type, unit, default_value, description;
+};
+
+// `--set KEY=VALUE` overrides, in command-line order.
+struct Override {
+    std::string key, value;
+};
+
+// Reads a scene file (JSON, comments allowed) and applies the overrides.
+// Throws InputError naming the file and field on any bad input.
+Scene load_scene(const std::filesystem::path& file, const std::vector<Override>& overrides);
+// The built-in default scene with the overrides applied.
+Scene default_scene(const std::vector<Override>& overrides);
+// Parses scene text (the part of load_scene after reading the file).
+Scene parse_scene(const std::string& text, const std::string& file_label,
+                  const std::vector<Override>& overrides);
+
+// Every key with type, unit, default and meaning.
+std::vector<KeyDoc> scene_keys();
+
+Derived derive(const Scene& scene);
+// The scene as resolved: all fields, derived values filled in; feeding it back
+// to parse_scene gives the same scene.
+nlohmann::json to_json(const Scene& scene);
+
+} // namespace sph

@@ -1,0 +1,87 @@
+#include "io/scene_setup.hpp"
+
+#include "sph/effects/gravity.hpp"
+#include "sph/lattice.hpp"
+
+namespace sph {
+
+namespace {
+template <int D>
+Vec<D> to_vec(const Vec3& v) {
+    Vec<D> out;
+    for (int a = 0; a < D; ++a)
+        out[a] = v[a];
+    return out;
+}
+} // namespace
+
+template <int D>
+Params<D> make_params(const Scene& scene, const Derived& derived) {
+    Params<D> p;
+    p.mass = derived.mass;
+    p.h = derived.h;
+    p.rest_density = scene.material.rest_density;
+    p.bulk_modulus = scene.material.bulk_modulus;
+    p.viscosity = scene.material.viscosity;
+    p.dt = derived.dt;
+    p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
+    return p;
+}
+
+template <int D>
+State<D> make_initial_state(const Scene& scene) {
+    const Real s = scene.fluid.spacing;
+    State<D> state;
+    state.resize(derive(scene).particles);
+    std::size_t next = 0;
+    for (const auto& block : scene.fluid.blocks) {
+        glm::vec<D, std::size_t> count;
+        std::size_t total = 1;
+        for (int a = 0; a < D; ++a) {
+            count[a] = lattice_count(block.min[a], block.max[a], s);
+            total *= count[a];
+        }
+        for (std::size_t k = 0; k < total; ++k) {
+            std::size_t rest = k;
+            Vec<D> x;
+            for (int a = 0; a < D; ++a) {
+                x[a] = block.min[a] + (Real(rest % count[a]) + Real(0.5)) * s;
+                rest /= count[a];
+            }
+            state.position[next] = x;
+            state.velocity[next] = to_vec<D>(block.velocity);
+            state.acceleration[next] = Vec<D>(0);
+            state.id[next] = static_cast<std::uint32_t>(next);
+            ++next;
+        }
+    }
+    return state;
+}
+
+template <int D>
+EffectList<D> make_effects(const Scene& scene) {
+    EffectList<D> effects;
+    if (scene.effects.gravity)
+        effects.push_back(std::make_unique<Gravity<D>>(to_vec<D>(*scene.effects.gravity)));
+    return effects;
+}
+
+template <int D>
+Simulation<D> make_simulation(const Scene& scene) {
+    const Derived derived = derive(scene);
+    return Simulation<D>(make_params<D>(scene, derived), make_initial_state<D>(scene),
+                         make_solver<D>(scene.solver.name),
+                         make_neighbour_search<D>(scene.solver.neighbour_search),
+                         make_effects<D>(scene));
+}
+
+template Params<2> make_params<2>(const Scene&, const Derived&);
+template Params<3> make_params<3>(const Scene&, const Derived&);
+template State<2> make_initial_state<2>(const Scene&);
+template State<3> make_initial_state<3>(const Scene&);
+template EffectList<2> make_effects<2>(const Scene&);
+template EffectList<3> make_effects<3>(const Scene&);
+template Simulation<2> make_simulation<2>(const Scene&);
+template Simulation<3> make_simulation<3>(const Scene&);
+
+} // namespace sph

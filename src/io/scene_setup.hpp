@@ -1,0 +1,24 @@
+#pragma once
+// From a scene to a ready simulation: parameters, the initial particles on
+// their lattice, the effects the scene names, the solver and the search.
+
+#include "io/scene.hpp"
+#include "sph/simulation.hpp"
+
+namespace sph {
+
+template <int D>
+Params<D> make_params(const Scene& scene, const Derived& derived);
+
+// Every block filled on its lattice, ids in creation order.
+template <int D>
+State<D> make_initial_state(const Scene& scene);
+
+// Exactly the effects the scene lists, in a fixed order.
+template <int D>
+EffectList<D> make_effects(const Scene& scene);
+
+template <int D>
+Simulation<D> make_simulation(const Scene& scene);
+
+} // namespace sph

@@ -1,0 +1,35 @@
+#include "io/stats_csv.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace sph {
+
+StatsCsv::StatsCsv(const std::filesystem::path& path) : path_(path) {
+    file_ = std::fopen(path.c_str(), "w");
+    if (!file_)
+        throw std::runtime_error("cannot write " + path.string());
+    fmt::print(file_, "{}\n", header);
+    std::fflush(file_);
+}
+
+StatsCsv::~StatsCsv() { finish(); }
+
+void StatsCsv::write(const Snapshot& f) {
+    const FrameStats& s = f.stats;
+    fmt::print(file_, "{},{:.9g},{},{:.6g},{},{:.9g},{:.9g},{:.6g},{:.6g},{:.9g},{:.9g},{:.3f}\n",
+               f.frame, f.time, f.steps, f.dt, s.particles, s.density_avg, s.density_max,
+               s.density_error_avg_pct, s.density_error_max_pct, s.kinetic_energy, s.max_speed,
+               f.wall_seconds);
+    if (std::fflush(file_) != 0)
+        throw std::runtime_error("cannot write " + path_.string() + " (disk full?)");
+}
+
+void StatsCsv::finish() {
+    if (file_)
+        std::fclose(file_);
+    file_ = nullptr;
+}
+
+} // namespace sph

@@ -1,0 +1,28 @@
+#pragma once
+// stats.csv: one row per frame (README, "Outputs"). Rows are flushed as they
+// are written, so a run that stops early keeps every frame so far.
+
+#include <cstdio>
+#include <filesystem>
+
+#include "io/frame_sink.hpp"
+
+namespace sph {
+
+class StatsCsv final : public FrameSink {
+  public:
+    explicit StatsCsv(const std::filesystem::path& path);
+    ~StatsCsv() override;
+    void write(const Snapshot& frame) override;
+    void finish() override;
+
+    static constexpr const char* header =
+        "frame,time,steps,dt,particles,density_avg,density_max,density_error_avg_pct,"
+        "density_error_max_pct,kinetic_energy,max_speed,wall_s";
+
+  private:
+    std::filesystem::path path_;
+    std::FILE* file_ = nullptr;
+};
+
+} // namespace sph

@@ -1,0 +1,37 @@
+#pragma once
+// Density by kernel summation over the neighbours, the particle itself included
+// (Müller et al. 2003, eq. 3; the seed's density):  rho_i = sum_j m W(|r_i - r_j|).
+
+#include <cmath>
+
+#include "sph/neighbours/neighbour_list.hpp"
+#include "sph/params.hpp"
+#include "sph/state.hpp"
+
+namespace sph {
+
+// A kernel that offers W from the squared distance skips a square root.
+template <class Kernel>
+Real kernel_value_squared(const Kernel& kernel, Real r2) {
+    if constexpr (requires { kernel.W_r2(r2); })
+        return kernel.W_r2(r2);
+    else
+        return kernel.W(std::sqrt(r2));
+}
+
+template <int D, class Kernel>
+void compute_density(const Params<D>& params, const Kernel& kernel, const NeighbourList& neighbours,
+                     State<D>& state) {
+    const std::size_t n = state.size();
+    const Real self = kernel_value_squared(kernel, Real(0));
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        Real sum = self;
+        for (std::uint32_t j : neighbours.of(i))
+            sum += kernel_value_squared(kernel,
+                                        squared_length<D>(state.position[i] - state.position[j]));
+        state.density[i] = params.mass * sum;
+    }
+}
+
+} // namespace sph

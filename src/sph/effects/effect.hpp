@@ -1,0 +1,37 @@
+#pragma once
+// Effects are the non-pressure forces a scene asks for. The step holds a list
+// built once from the scene: an effect the scene does not name is not in the
+// list, allocates nothing and costs nothing per step.
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "sph/neighbours/neighbour_list.hpp"
+#include "sph/params.hpp"
+#include "sph/state.hpp"
+
+namespace sph {
+
+template <int D>
+class Effect {
+  public:
+    virtual ~Effect() = default;
+    // The key naming the effect in the scene's `effects` object.
+    virtual std::string_view name() const = 0;
+    // Adds this effect's acceleration to state.acceleration.
+    virtual void apply(const Params<D>& params, const NeighbourList& neighbours,
+                       State<D>& state) const = 0;
+};
+
+template <int D>
+using EffectList = std::vector<std::unique_ptr<Effect<D>>>;
+
+template <int D>
+void apply_effects(const EffectList<D>& effects, const Params<D>& params,
+                   const NeighbourList& neighbours, State<D>& state) {
+    for (const auto& effect : effects)
+        effect->apply(params, neighbours, state);
+}
+
+} // namespace sph

@@ -1,0 +1,25 @@
+#pragma once
+// Uniform gravity, the seed's body force: a_i += g.
+
+#include "sph/effects/effect.hpp"
+
+namespace sph {
+
+template <int D>
+class Gravity final : public Effect<D> {
+  public:
+    explicit Gravity(const Vec<D>& g) : g_(g) {}
+    std::string_view name() const override { return "gravity"; }
+    void apply(const Params<D>&, const NeighbourList&, State<D>& state) const override {
+        const std::size_t n = state.size();
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i)
+            state.acceleration[i] += g_;
+    }
+    const Vec<D>& acceleration() const { return g_; }
+
+  private:
+    Vec<D> g_;
+};
+
+} // namespace sph

@@ -1,0 +1,125 @@
+#pragma once
+// Smoothing kernels, each written for 2D and 3D with its proper normalisation.
+// Convention throughout sphclip: `h` is the support radius (the seed's
+// interaction radius): W(r) = 0 for r >= h.
+//
+// Interface shared by every kernel (tests/test_kernels.cpp checks it):
+//   W(r)        value at distance r
+//   dW(r)       radial derivative dW/dr (<= 0 inside the support)
+//   grad(x, r)  gradient of W at offset x with |x| = r > 0
+
+#include <numbers>
+
+#include "sph/vec.hpp"
+
+namespace sph {
+
+namespace detail {
+constexpr Real pi = std::numbers::pi_v<Real>;
+inline Real cube(Real x) { return x * x * x; }
+inline Real pow_int(Real x, int n) {
+    Real y = 1;
+    for (int i = 0; i < n; ++i)
+        y *= x;
+    return y;
+}
+} // namespace detail
+
+// Müller, Charypar & Gross 2003, "Particle-based fluid simulation for
+// interactive applications", eq. 20: poly6 = C (h^2 - r^2)^3.
+// 2D: C = 4 / (pi h^8)  (the seed's density constant);
+// 3D: C = 315 / (64 pi h^9).
+// Both follow from integral of W over the disc / ball being 1.
+template <int D>
+struct Poly6 {
+    Real h, h2, norm;
+    explicit Poly6(Real support)
+        : h(support), h2(support * support),
+          norm(D == 2 ? 4 / (detail::pi * detail::pow_int(support, 8))
+                      : 315 / (64 * detail::pi * detail::pow_int(support, 9))) {}
+    // Value from the squared distance: no square root in the density loop.
+    Real W_r2(Real r2) const { return r2 < h2 ? norm * detail::cube(h2 - r2) : 0; }
+    Real W(Real r) const { return W_r2(r * r); }
+    Real dW(Real r) const { return r < h ? -6 * norm * r * (h2 - r * r) * (h2 - r * r) : 0; }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return (dW(r) / r) * x; }
+};
+
+// Müller et al. 2003, eq. 21: spiky = C (h - r)^3, whose gradient does not vanish
+// at r = 0, so close particles still repel.
+// 2D: C = 10 / (pi h^5); 3D: C = 15 / (pi h^6).
+template <int D>
+struct Spiky {
+    Real h, norm;
+    explicit Spiky(Real support)
+        : h(support), norm(D == 2 ? 10 / (detail::pi * detail::pow_int(support, 5))
+                                  : 15 / (detail::pi * detail::pow_int(support, 6))) {}
+    Real W(Real r) const { return r < h ? norm * detail::cube(h - r) : 0; }
+    Real dW(Real r) const { return r < h ? -3 * norm * (h - r) * (h - r) : 0; }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return (dW(r) / r) * x; }
+};
+
+// Müller et al. 2003, eq. 22: the viscosity kernel is used only through its
+// Laplacian, lap W = C (h - r).
+// 3D: C = 45 / (pi h^6) (Müller); 2D: C = 40 / (pi h^5) (the seed's constant).
+// Both are the Laplacian of a normalised kernel that vanishes with its slope at
+// r = h, so integral of lapW * r^2 / (2 D) over the support is 1 (the property
+// the tests check).
+template <int D>
+struct ViscosityLaplacian {
+    Real h, norm;
+    explicit ViscosityLaplacian(Real support)
+        : h(support), norm(D == 2 ? 40 / (detail::pi * detail::pow_int(support, 5))
+                                  : 45 / (detail::pi * detail::pow_int(support, 6))) {}
+    Real laplacian(Real r) const { return r < h ? norm * (h - r) : 0; }
+};
+
+// Cubic B-spline (Monaghan 1992, M4), written with support radius h
+// (as in SPlisHSPlasH's CubicKernel): q = r / h,
+//   W = C (6 (q^3 - q^2) + 1)  for q <= 1/2,   W = C 2 (1 - q)^3  for q <= 1,
+// 2D: C = 40 / (7 pi h^2); 3D: C = 8 / (pi h^3).
+template <int D>
+struct CubicSpline {
+    Real h, norm;
+    explicit CubicSpline(Real support)
+        : h(support), norm(D == 2 ? 40 / (7 * detail::pi * support * support)
+                                  : 8 / (detail::pi * detail::cube(support))) {}
+    Real W(Real r) const {
+        const Real q = r / h;
+        if (q >= 1)
+            return 0;
+        if (q <= 0.5)
+            return norm * (6 * (q * q * q - q * q) + 1);
+        return norm * 2 * detail::cube(1 - q);
+    }
+    Real dW(Real r) const {
+        const Real q = r / h;
+        if (q >= 1)
+            return 0;
+        if (q <= 0.5)
+            return norm * 6 * (3 * q * q - 2 * q) / h;
+        return -norm * 6 * (1 - q) * (1 - q) / h;
+    }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return (dW(r) / r) * x; }
+};
+
+// Wendland C2 (Wendland 1995; Dehnen & Aly 2012, table 1), support radius h:
+//   W = C (1 - q)^4 (1 + 4 q),   2D: C = 7 / (pi h^2);  3D: C = 21 / (2 pi h^3).
+template <int D>
+struct WendlandC2 {
+    Real h, norm;
+    explicit WendlandC2(Real support)
+        : h(support), norm(D == 2 ? 7 / (detail::pi * support * support)
+                                  : 21 / (2 * detail::pi * detail::cube(support))) {}
+    Real W(Real r) const {
+        const Real q = r / h;
+        return q < 1 ? norm * detail::pow_int(1 - q, 4) * (1 + 4 * q) : 0;
+    }
+    // d/dr of (1-q)^4 (1+4q) = -20 q (1-q)^3 / h
+    Real dW(Real r) const {
+        const Real q = r / h;
+        return q < 1 ? -20 * norm * q * detail::cube(1 - q) / h : 0;
+    }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return (dW(r) / r) * x; }
+};
+
+} // namespace sph

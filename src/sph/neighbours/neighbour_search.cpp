@@ -1,0 +1,24 @@
+#include "sph/neighbours/neighbour_search.hpp"
+
+#include <stdexcept>
+
+#include "sph/neighbours/all_pairs.hpp"
+#include "sph/neighbours/spatial_hash.hpp"
+
+namespace sph {
+
+std::vector<std::string> neighbour_search_names() { return {"hash", "all_pairs"}; }
+
+template <int D>
+std::unique_ptr<NeighbourSearch<D>> make_neighbour_search(std::string_view name) {
+    if (name == "hash")
+        return std::make_unique<SpatialHash<D>>();
+    if (name == "all_pairs")
+        return std::make_unique<AllPairs<D>>();
+    throw std::invalid_argument("unknown neighbour search: " + std::string(name));
+}
+
+template std::unique_ptr<NeighbourSearch<2>> make_neighbour_search<2>(std::string_view);
+template std::unique_ptr<NeighbourSearch<3>> make_neighbour_search<3>(std::string_view);
+
+} // namespace sph

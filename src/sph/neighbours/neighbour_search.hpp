@@ -1,0 +1,32 @@
+#pragma once
+// The interface every neighbour search implements, and the factory that picks
+// one by the name used in scenes (`solver.neighbour_search`).
+
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sph/neighbours/neighbour_list.hpp"
+#include "sph/vec.hpp"
+
+namespace sph {
+
+template <int D>
+class NeighbourSearch {
+  public:
+    virtual ~NeighbourSearch() = default;
+    virtual std::string_view name() const = 0;
+    // Lists, for every particle, the other particles closer than `radius`
+    // (strictly). Reuses the memory of `out` and of the search between calls.
+    virtual void find(std::span<const Vec<D>> positions, Real radius, NeighbourList& out) = 0;
+};
+
+// Names accepted by make_neighbour_search, in the order the README lists them.
+std::vector<std::string> neighbour_search_names();
+
+template <int D>
+std::unique_ptr<NeighbourSearch<D>> make_neighbour_search(std::string_view name);
+
+} // namespace sph

@@ -1,0 +1,45 @@
+#pragma once
+// What a frame's consumers (exports, stats, and the renderer) see of the
+// simulation: a copy of the particle fields without the dimension in the type.
+// The renderer and the writers never touch State or the solver.
+
+#include <cstdint>
+#include <vector>
+
+#include "sph/diagnostics.hpp"
+#include "sph/state.hpp"
+
+namespace sph {
+
+struct Snapshot {
+    int dimension = 2;
+    std::uint64_t frame = 0;
+    std::uint64_t steps = 0; // since the start
+    Real time = 0;           // s
+    Real dt = 0;             // s, the time step in use
+    Real wall_seconds = 0;   // since the start of the simulation
+    FrameStats stats;
+    // Particle fields, `dimension` values per particle for vectors.
+    std::vector<Real> position, velocity, density, pressure;
+    std::vector<std::uint32_t> id;
+
+    std::size_t size() const { return density.size(); }
+};
+
+template <int D>
+void copy_fields(const State<D>& state, Snapshot& snapshot) {
+    const std::size_t n = state.size();
+    snapshot.dimension = D;
+    snapshot.position.resize(n * D);
+    snapshot.velocity.resize(n * D);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int a = 0; a < D; ++a) {
+            snapshot.position[i * D + a] = state.position[i][a];
+            snapshot.velocity[i * D + a] = state.velocity[i][a];
+        }
+    snapshot.density = state.density;
+    snapshot.pressure = state.pressure;
+    snapshot.id = state.id;
+}
+
+} // namespace sph

@@ -1,0 +1,145 @@
+#include "sph/solvers/seed.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sph/boundary.hpp"
+#include "sph/density.hpp"
+#include "sph/equation_of_state.hpp"
+#include "sph/integrate.hpp"
+#include "sph/kernels.hpp"
+
+namespace sph {
+
+template <int D>
+void SeedSolver<D>::step(const Params<D>& params, State<D>& state, StepContext<D>& context) {
+    // 1. Neighbours closer than h (the seed's spatial hash by default).
+    context.search.find(state.position, params.h, context.neighbours);
+    // 2. Density by summation with the poly6 kernel; p = K (rho - rho0) / rho0.
+    compute_density(params, Poly6<D>(params.h), context.neighbours, state);
+    compute_pressure_linear(params, state);
+    // 3. Pressure and viscosity together, the seed's pair force f_ij, a = f / rho.
+    compute_seed_interaction(params, context.neighbours, state);
+    // 4. Body forces and other effects the scene names (gravity, ...).
+    apply_effects(context.effects, params, context.neighbours, state);
+    // 5. Symplectic Euler.
+    integrate_symplectic_euler(params, state);
+    // 6. Walls: put back inside and reflect.
+    reflect_at_box(params, state);
+}
+
+template <int D>
+void SeedSolver<D>::update_fields(const Params<D>& params, State<D>& state,
+                                  StepContext<D>& context) {
+    context.search.find(state.position, params.h, context.neighbours);
+    compute_density(params, Poly6<D>(params.h), context.neighbours, state);
+    compute_pressure_linear(params, state);
+}
+
+namespace {
+
+// A unit vector fixed by the pair's ids, for two particles at the same place:
+// the pressure force keeps its finite magnitude (the spiky gradient does not
+// vanish at r = 0) and pushes them apart along a direction that is the same
+// on every run and opposite for the other particle.
+template <int D>
+Vec<D> coincident_direction(std::uint32_t id_a, std::uint32_t id_b) {
+    // splitmix64 (Steele, Lea & Flood 2014) of the ordered pair.
+    auto mix = [](std::uint64_t z) {
+        z += 0x9e3779b97f4a7c15ull;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    };
+    const std::uint64_t a = mix((std::uint64_t(id_a) << 32) | id_b);
+    const std::uint64_t b = mix(a);
+    const Real u = Real(a >> 11) * 0x1.0p-53; // uniform in [0, 1)
+    const Real v = Real(b >> 11) * 0x1.0p-53;
+    const Real angle = 2 * detail::pi * u;
+    if constexpr (D == 2) {
+        return {std::cos(angle), std::sin(angle)};
+    } else {
+        const Real z = 2 * v - 1;
+        const Real ring = std::sqrt(1 - z * z);
+        return {ring * std::cos(angle), ring * std::sin(angle), z};
+    }
+}
+
+} // namespace
+
+// The seed's interaction force (MODEL.md), written with the kernels it comes
+// from (Müller et al. 2003, eqs. 10, 14, 21, 22):
+//   f_ij = m / rho_j [ -(p_i + p_j) / 2  grad W_spiky(r_ij)  -  mu v_ij lap W_visc(r) ]
+// with p = K (rho - rho0) / rho0 (equation_of_state.hpp), r_ij = r_i - r_j,
+// v_ij = v_i - v_j, q = r / h. In 2D (W_spiky = 10/(pi h^5) (h-r)^3,
+// lap W_visc = 40/(pi h^5) (h-r)) this is the seed's expression term by term:
+//   m/(pi h^4 rho_j) (1-q) [15 K' (rho_i + rho_j - 2 rho0) (1-q)/q r_ij - 40 mu v_ij]
+// with the seed's K' = K / rho0. In 3D (15/(pi h^6) (h-r)^3 and
+// 45/(pi h^6) (h-r)) it becomes
+//   m/(pi h^5 rho_j) (1-q) [45/2 K' (rho_i + rho_j - 2 rho0) (1-q)/q r_ij - 45 mu v_ij].
+// The seed's 1/q only stands for the direction r_ij / r; at r = 0 the
+// magnitude is finite and coincident_direction() supplies the direction.
+//
+// The acceleration it gives i, f_ij / rho_i = m / (rho_i rho_j) [...], is
+// symmetric in i and j but for the sign of r_ij and v_ij: this is why the seed
+// can compute it once per pair and apply it with opposite signs. Evaluated
+// here as one expression whose every operation commutes, the two sides are
+// exact negatives of each other.
+template <int D>
+Vec<D> seed_pair_acceleration(const Params<D>& params, const State<D>& state, std::size_t i,
+                              std::size_t j) {
+    const Spiky<D> spiky(params.h);
+    const ViscosityLaplacian<D> viscosity(params.h);
+    const Vec<D> r_ij = state.position[i] - state.position[j];
+    const Real r = std::sqrt(squared_length<D>(r_ij));
+    Vec<D> direction;
+    if (r > 1e-12 * params.h) {
+        direction = r_ij / r;
+    } else {
+        const bool i_first = state.id[i] < state.id[j];
+        direction = coincident_direction<D>(std::min(state.id[i], state.id[j]),
+                                            std::max(state.id[i], state.id[j]));
+        if (!i_first)
+            direction = -direction;
+    }
+    const Real mean_pressure = Real(0.5) * (state.pressure[i] + state.pressure[j]);
+    const Vec<D> pressure_term = -mean_pressure * spiky.dW(r) * direction;
+    const Vec<D> viscous_term =
+        -params.viscosity * viscosity.laplacian(r) * (state.velocity[i] - state.velocity[j]);
+    return (params.mass / (state.density[i] * state.density[j])) * (pressure_term + viscous_term);
+}
+
+template <int D>
+Vec<D> seed_pair_force(const Params<D>& params, const State<D>& state, std::size_t i,
+                       std::size_t j) {
+    return state.density[i] * seed_pair_acceleration(params, state, i, j);
+}
+
+// Gather-style: each particle sums its own side of every pair, so threads
+// never write to the same particle and the sum is the same for any thread
+// count; the seed's once-per-pair evaluation gives the same values.
+template <int D>
+void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
+                              State<D>& state) {
+    const std::size_t n = state.size();
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+        Vec<D> acceleration(0);
+        for (std::uint32_t j : neighbours.of(i))
+            acceleration += seed_pair_acceleration(params, state, i, j);
+        state.acceleration[i] = acceleration;
+    }
+}
+
+template class SeedSolver<2>;
+template class SeedSolver<3>;
+template void compute_seed_interaction<2>(const Params<2>&, const NeighbourList&, State<2>&);
+template void compute_seed_interaction<3>(const Params<3>&, const NeighbourList&, State<3>&);
+template Vec<2> seed_pair_force<2>(const Params<2>&, const State<2>&, std::size_t, std::size_t);
+template Vec<3> seed_pair_force<3>(const Params<3>&, const State<3>&, std::size_t, std::size_t);
+template Vec<2> seed_pair_acceleration<2>(const Params<2>&, const State<2>&, std::size_t,
+                                          std::size_t);
+template Vec<3> seed_pair_acceleration<3>(const Params<3>&, const State<3>&, std::size_t,
+                                          std::size_t);
+
+} // namespace sph

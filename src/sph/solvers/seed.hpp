@@ -1,0 +1,34 @@
+#pragma once
+// The `seed` solver: the model of the report sphclip grew from
+// (../shared/seed/MODEL.md), kept faithful so results can be compared with it.
+
+#include "sph/solvers/solver.hpp"
+
+namespace sph {
+
+template <int D>
+class SeedSolver final : public Solver<D> {
+  public:
+    std::string_view name() const override { return "seed"; }
+    void step(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
+    void update_fields(const Params<D>& params, State<D>& state,
+                       StepContext<D>& context) override;
+};
+
+// The seed's interaction force summed for every particle and divided by its
+// density: state.acceleration = (1 / rho_i) sum_j f_ij. Exposed for tests.
+template <int D>
+void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
+                              State<D>& state);
+
+// f_ij / rho_i: the acceleration particle j gives particle i. Exposed for tests.
+template <int D>
+Vec<D> seed_pair_acceleration(const Params<D>& params, const State<D>& state, std::size_t i,
+                              std::size_t j);
+
+// f_ij, the seed's force density on i from j. Exposed for tests.
+template <int D>
+Vec<D> seed_pair_force(const Params<D>& params, const State<D>& state, std::size_t i,
+                       std::size_t j);
+
+} // namespace sph

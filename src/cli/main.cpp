@@ -27,10 +27,11 @@ void print_keys(bool markdown) {
         for (const auto& k : keys)
             fmt::print("| `{}` | {} | {} | {} | {} |\n", k.path, k.type, k.unit, k.default_value,
                        k.description);
+        fmt::print("\nA vector has one number per dimension (2 or 3).\n");
         return;
     }
     for (const auto& k : keys)
-        fmt::print("{:<28} {:<10} default {:<22} {}\n", k.path, k.unit.empty() ? "-" : k.unit,
+        fmt::print("{:<26} {:<8} default {:<30} {}\n", k.path, k.unit.empty() ? "-" : k.unit,
                    k.default_value.empty() ? "-" : k.default_value, k.description);
 }
 

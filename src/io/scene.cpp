@@ -197,8 +197,8 @@ class FieldReader {
     }
 
     // A list of objects; returns the element count (0 when absent).
-    std::size_t list(const std::string& path, const char* doc) {
-        record(path, "array of objects", "", "", doc);
+    std::size_t list(const std::string& path, const std::string& default_text, const char* doc) {
+        record(path, "array of objects", "", default_text, doc);
         const json* v = find(path);
         if (!v)
             return 0;
@@ -422,7 +422,8 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
                                "Lattice spacing of the particles in the fluid blocks.",
                                Bound::positive);
     const std::size_t block_count =
-        r.list("fluid.blocks", "Boxes filled with fluid particles on the lattice.");
+        r.list("fluid.blocks", "one block, the dam-break column",
+               "Boxes filled with fluid particles on the lattice.");
     if (r.present("fluid.blocks"))
         s.fluid.blocks.assign(block_count, FluidBlock{});
     for (std::size_t i = 0; i < std::max<std::size_t>(block_count, 1); ++i) {
@@ -454,8 +455,8 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
                                        "kg/m^3", "Rest density rho0.", Bound::positive);
     s.material.bulk_modulus =
         r.number("material.bulk_modulus", d.material.bulk_modulus, "Pa",
-                 "Bulk modulus K of the linear law p = K (rho - rho0); speed of sound "
-                 "sqrt(K / rho0).",
+                 "Bulk modulus K of the linear law p = K (rho - rho0) / rho0; speed of sound "
+                 "c = sqrt(K / rho0).",
                  Bound::positive);
     s.material.viscosity = r.number("material.viscosity", d.material.viscosity, "Pa.s",
                                     "Dynamic viscosity mu.", Bound::non_negative);
@@ -463,7 +464,7 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.solver.name = r.choice("solver.name", d.solver.name, solver_names(), "Solver.");
     s.solver.dt = r.optional_number(
         "solver.dt", "s", "from stability limits",
-        "Fixed time step; by default min(0.4 h / c, 0.125 h^2 rho0 / mu, 0.25 sqrt(h / |g|)).",
+        "Fixed time step; by default min(0.4 h / c, 0.125 h^2 rho0 / mu, 0.25 sqrt(h / g)).",
         Bound::positive);
     s.solver.neighbour_search = r.choice("solver.neighbour_search", d.solver.neighbour_search,
                                          neighbour_search_names(), "Neighbour search.");
@@ -594,8 +595,17 @@ Scene default_scene(const std::vector<Override>& overrides) {
 }
 
 std::vector<KeyDoc> scene_keys() {
-    std::vector<KeyDoc> docs;
+    // Vectors have D components: show the 2D and the 3D default.
+    std::vector<KeyDoc> docs, docs_3d;
     read_fields(json::object(), "built-in scene", {}, &docs);
+    read_fields(json{{"dimension", 3}}, "built-in scene", {}, &docs_3d);
+    for (std::size_t i = 0; i < docs.size() && i < docs_3d.size(); ++i) {
+        if (docs[i].type != docs_3d[i].type) {
+            docs[i].type = docs[i].type.find("null") != std::string::npos ? "vector or null"
+                                                                           : "vector";
+            docs[i].default_value += " (2D), " + docs_3d[i].default_value + " (3D)";
+        }
+    }
     return docs;
 }
 

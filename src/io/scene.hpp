@@ -18,7 +18,7 @@ using Vec3 = std::array<double, 3>;
 
 struct FluidBlock {
     Vec3 min{0, 0, 0};           // m
-    Vec3 max{0.05715, 0.1143, 0}; // m
+    Vec3 max{0.05715, 0.1143, 0.15}; // m
     Vec3 velocity{0, 0, 0};      // m/s, initial velocity of its particles
 };
 

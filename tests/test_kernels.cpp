@@ -1,10 +1,10 @@
 // Property tests on every kernel in 2D and 3D (STYLE.md point 12):
 // normalisation, non-negativity, derivative consistency, zero gradient sum
 // on a lattice.
-#include <catch2/catch.hpp>
-
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
+
+#include <catch2/catch.hpp>
 
 using namespace sph;
 
@@ -100,13 +100,15 @@ TEST_CASE("poly6 W_r2 equals W", "[kernels]") {
 TEST_CASE("the 2D constants are the seed's", "[kernels]") {
     const Real h = 0.7;
     // rho = 4 m / (pi h^8) sum (h^2 - r^2)^3
-    CHECK(Poly6<2>(h).W(0.2) == Approx(4 / (detail::pi * std::pow(h, 8)) * std::pow(h * h - 0.04, 3)));
+    CHECK(Poly6<2>(h).W(0.2) ==
+          Approx(4 / (detail::pi * std::pow(h, 8)) * std::pow(h * h - 0.04, 3)));
     // The seed's pressure factor 15 (1-q)^2 / (pi h^4 q) |r_ij| is half the
     // spiky kernel's slope (the other half is the mean of two pressures).
     const Real r = 0.25, q = r / h;
     CHECK(-Spiky<2>(h).dW(r) / 2 ==
           Approx(15 * (1 - q) * (1 - q) / (detail::pi * std::pow(h, 4) * q) * r));
-    CHECK(ViscosityLaplacian<2>(h).laplacian(r) == Approx(40 * (1 - q) / (detail::pi * std::pow(h, 4))));
+    CHECK(ViscosityLaplacian<2>(h).laplacian(r) ==
+          Approx(40 * (1 - q) / (detail::pi * std::pow(h, 4))));
 }
 
 // The viscosity kernel is used through its Laplacian only. It is the

@@ -1,12 +1,11 @@
 // Equivalence of the neighbour searches with brute force (STYLE.md point 13),
 // on random clouds in 2D and 3D, negative coordinates included.
-#include <algorithm>
-#include <random>
-
-#include <catch2/catch.hpp>
-
 #include "sph/neighbours/all_pairs.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <random>
 
 using namespace sph;
 

@@ -1,14 +1,13 @@
 // The seed solver against the seed's formulas (../shared/seed/MODEL.md)
 // evaluated by hand for a pair and a triple of particles, in 2D and 3D.
-#include <cmath>
-
-#include <catch2/catch.hpp>
-
 #include "sph/density.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/kernels.hpp"
 #include "sph/neighbours/all_pairs.hpp"
 #include "sph/solvers/seed.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
 
 using namespace sph;
 

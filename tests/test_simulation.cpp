@@ -1,12 +1,11 @@
 // Whole simulations built from scenes: conservation, walls, frame timing,
 // thread-count determinism (STYLE.md point 14) and the non-finite check.
-#include <algorithm>
-#include <cmath>
-
-#include <catch2/catch.hpp>
-#include <omp.h>
-
 #include "io/scene_setup.hpp"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <omp.h>
 
 using namespace sph;
 
@@ -50,10 +49,11 @@ TEST_CASE("a dam break keeps every particle, inside the box", "[simulation]") {
 }
 
 TEST_CASE("a 3D drop keeps every particle inside the box", "[simulation]") {
-    const Scene scene = default_scene({{"dimension", "3"},
-                                       {"domain.max", "[0.1,0.1,0.1]"},
-                                       {"fluid.spacing", "0.01"},
-                                       {"fluid.blocks", R"([{"min":[0.02,0.05,0.02],"max":[0.06,0.09,0.06]}])"}});
+    const Scene scene =
+        default_scene({{"dimension", "3"},
+                       {"domain.max", "[0.1,0.1,0.1]"},
+                       {"fluid.spacing", "0.01"},
+                       {"fluid.blocks", R"([{"min":[0.02,0.05,0.02],"max":[0.06,0.09,0.06]}])"}});
     auto sim = make_simulation<3>(scene);
     const std::size_t n = sim.state().size();
     REQUIRE(n == 64);
@@ -112,10 +112,11 @@ TEST_CASE("a non-finite state stops the run and names the particle", "[simulatio
 TEST_CASE("a block without gravity or walls keeps its momentum and centre", "[simulation]") {
     // No effects and walls far away: the surface contracts (the seed's linear
     // law pulls where density is below rest), the block as a whole stays.
-    const Scene scene = default_scene({{"effects", "{}"},
-                                       {"domain.min", "[-1,-1]"},
-                                       {"domain.max", "[1,1]"},
-                                       {"fluid.blocks", R"([{"min":[0,0],"max":[0.0200025,0.0200025]}])"}});
+    const Scene scene =
+        default_scene({{"effects", "{}"},
+                       {"domain.min", "[-1,-1]"},
+                       {"domain.max", "[1,1]"},
+                       {"fluid.blocks", R"([{"min":[0,0],"max":[0.0200025,0.0200025]}])"}});
     auto sim = make_simulation<2>(scene);
     REQUIRE(sim.state().size() == 14 * 14);
     sim.advance_to(0.1);

@@ -5,9 +5,9 @@ namespace sph {
 
 enum ExitCode : int {
     exit_success = 0,
-    exit_failure = 1,     // anything else: disk full, internal error
-    exit_bad_input = 2,   // command line, scene file, --set, output folder
-    exit_non_finite = 3,  // the simulation produced NaN or infinity
+    exit_failure = 1,       // anything else: disk full, internal error
+    exit_bad_input = 2,     // command line, scene file, --set, output folder
+    exit_non_finite = 3,    // the simulation produced NaN or infinity
     exit_interrupted = 130, // SIGINT or SIGTERM: outputs so far are finalised
 };
 

@@ -1,15 +1,14 @@
 // sphclip: scene file -> SPH simulation -> per-frame outputs, on a machine
 // with no screen. See README.md for the command line and exit codes.
 
-#include <exception>
-#include <string>
-
-#include <CLI/CLI.hpp>
-#include <fmt/format.h>
-
 #include "cli/exit_codes.hpp"
 #include "cli/run_command.hpp"
 #include "io/input_error.hpp"
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <fmt/format.h>
+#include <string>
 
 namespace {
 
@@ -38,7 +37,8 @@ void print_keys(bool markdown) {
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"sphclip: turns a scene file into a fluid clip (SPH) on a machine with no screen."};
+    CLI::App app{
+        "sphclip: turns a scene file into a fluid clip (SPH) on a machine with no screen."};
     app.set_version_flag("--version", SPHCLIP_VERSION);
     app.require_subcommand(1);
 
@@ -67,7 +67,8 @@ int main(int argc, char** argv) {
     run_cmd->add_flag("--quiet", run.quiet, "No progress line or summary");
 
     bool markdown = false;
-    auto* keys_cmd = app.add_subcommand("keys", "List every scene key with unit, default, meaning.");
+    auto* keys_cmd =
+        app.add_subcommand("keys", "List every scene key with unit, default, meaning.");
     keys_cmd->add_flag("--markdown", markdown, "As a Markdown table");
 
     try {

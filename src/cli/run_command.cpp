@@ -1,16 +1,5 @@
 #include "cli/run_command.hpp"
 
-#include <atomic>
-#include <chrono>
-#include <csignal>
-#include <cmath>
-#include <memory>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-#include <omp.h>
-#include <unistd.h>
-
 #include "cli/exit_codes.hpp"
 #include "cli/progress.hpp"
 #include "io/files.hpp"
@@ -18,6 +7,16 @@
 #include "io/particle_export.hpp"
 #include "io/scene_setup.hpp"
 #include "io/stats_csv.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <fmt/format.h>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+#include <unistd.h>
 
 namespace sph {
 
@@ -28,7 +27,9 @@ namespace {
 
 std::atomic<int> interrupt_signal{0};
 
-extern "C" void on_interrupt(int signal) { interrupt_signal.store(signal); }
+extern "C" void on_interrupt(int signal) {
+    interrupt_signal.store(signal);
+}
 
 // Stops simulating on SIGINT/SIGTERM; the outputs so far are finalised.
 struct InterruptGuard {

@@ -1,12 +1,12 @@
 #pragma once
 // `sphclip run`: scene -> simulation -> per-frame outputs.
 
+#include "io/scene.hpp"
+
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include "io/scene.hpp"
 
 namespace sph {
 

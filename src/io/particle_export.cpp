@@ -1,12 +1,14 @@
 #include "io/particle_export.hpp"
 
-#include <fmt/format.h>
-
 #include "io/files.hpp"
+
+#include <fmt/format.h>
 
 namespace sph {
 
-std::string frame_stem(std::uint64_t frame) { return fmt::format("frame_{:05d}", frame); }
+std::string frame_stem(std::uint64_t frame) {
+    return fmt::format("frame_{:05d}", frame);
+}
 
 void ParticleCsv::write(const Snapshot& f) {
     const int dim = f.dimension;
@@ -58,8 +60,8 @@ void ParticleVtk::write(const Snapshot& f) {
         "format=\"ascii\">\n");
     vectors(f.velocity);
     put("</DataArray>\n");
-    for (const auto& [name, values] : {std::pair{"density", &f.density},
-                                       std::pair{"pressure", &f.pressure}}) {
+    for (const auto& [name, values] :
+         {std::pair{"density", &f.density}, std::pair{"pressure", &f.pressure}}) {
         put("<DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", name);
         for (double v : *values)
             put("{:.9g}\n", v);

@@ -5,11 +5,11 @@
 //        time series ParaView opens; the .pvd is rewritten after every frame so
 //        it is valid whenever the run stops.
 
+#include "io/frame_sink.hpp"
+
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include "io/frame_sink.hpp"
 
 namespace sph {
 

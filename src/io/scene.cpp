@@ -1,23 +1,22 @@
 #include "io/scene.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <fstream>
-#include <map>
-#include <regex>
-#include <set>
-#include <sstream>
-
-#include <fmt/format.h>
-#include <fmt/ranges.h>
-#include <nlohmann/json.hpp>
-#include <unistd.h>
-
 #include "io/input_error.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
 #include "sph/solvers/solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <unistd.h>
 
 namespace sph {
 
@@ -69,6 +68,12 @@ std::string generic_path(const std::string& path) {
     return std::regex_replace(path, index, "[]");
 }
 
+// "a.b" encloses "a.b", "a.b.c" and "a.b[2]".
+bool encloses(const std::string& outer, const std::string& inner) {
+    return inner.starts_with(outer) && (inner.size() == outer.size() ||
+                                        inner[outer.size()] == '.' || inner[outer.size()] == '[');
+}
+
 std::string parent_of(const std::string& path) {
     const auto dot = path.rfind('.');
     return dot == std::string::npos ? std::string() : path.substr(0, dot);
@@ -94,7 +99,10 @@ class FieldReader {
         : root_(root), file_(std::move(file)), overridden_(std::move(overridden)) {}
 
     [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
-        const bool from_command_line = overridden_.contains(path);
+        const bool from_command_line =
+            std::any_of(overridden_.begin(), overridden_.end(), [&](const std::string& key) {
+                return encloses(key, path) || encloses(path, key);
+            });
         throw InputError(file_, path + (from_command_line ? " (from --set)" : ""), problem);
     }
 
@@ -161,9 +169,10 @@ class FieldReader {
         const auto text = v->get<std::string>();
         if (std::find(allowed.begin(), allowed.end(), text) == allowed.end()) {
             const auto guess = closest(text, allowed);
-            fail(path, fmt::format("unknown value \"{}\"{}; expected one of: {}", text,
-                                   guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
-                                   fmt::join(allowed, ", ")));
+            fail(path,
+                 fmt::format("unknown value \"{}\"{}; expected one of: {}", text,
+                             guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
+                             fmt::join(allowed, ", ")));
         }
         return text;
     }
@@ -206,7 +215,8 @@ class FieldReader {
             fail(path, "expected an array, got " + describe(*v));
         for (std::size_t i = 0; i < v->size(); ++i)
             if (!(*v)[i].is_object())
-                fail(fmt::format("{}[{}]", path, i), "expected an object, got " + describe((*v)[i]));
+                fail(fmt::format("{}[{}]", path, i),
+                     "expected an object, got " + describe((*v)[i]));
         return v->size();
     }
 
@@ -228,8 +238,8 @@ class FieldReader {
                 std::string default_value, std::string doc) {
         const auto generic = generic_path(path);
         if (known_.insert(generic).second)
-            docs_.push_back({generic, std::move(type), unit, std::move(default_value),
-                             std::move(doc)});
+            docs_.push_back(
+                {generic, std::move(type), unit, std::move(default_value), std::move(doc)});
     }
 
     double checked_number(const std::string& path, const json& v, Bound bound) const {
@@ -275,6 +285,8 @@ class FieldReader {
     void check_object(const json& object, const std::string& prefix) const {
         for (auto it = object.begin(); it != object.end(); ++it) {
             const std::string path = prefix.empty() ? it.key() : prefix + "." + it.key();
+            if (it.key().find_first_of("[]") != std::string::npos)
+                reject(path, path); // brackets only ever come from list indices
             const std::string generic = generic_path(path);
             if (known_.contains(generic)) {
                 if (it->is_array() && is_list(generic))
@@ -317,8 +329,8 @@ class FieldReader {
             guess = parent.empty() ? guess : parent_of(path) + "." + guess;
         else
             guess = closest(generic, all);
-        fail(path, "unknown key" +
-                       (guess.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", guess)));
+        fail(path, "unknown key" + (guess.empty() ? std::string()
+                                                  : fmt::format(" (did you mean '{}'?)", guess)));
     }
 
     const json& root_;
@@ -337,7 +349,9 @@ void apply_override(json& root, const Override& o, const std::string& file) {
     json value;
     try {
         value = json::parse(o.value);
-    } catch (const json::parse_error&) {
+    } catch (const json::out_of_range&) {
+        throw InputError(file, field, fmt::format("the number {} is out of range", o.value));
+    } catch (const json::exception&) {
         value = o.value;
     }
     json* node = &root;
@@ -358,9 +372,9 @@ void apply_override(json& root, const Override& o, const std::string& file) {
                                              o.key.substr(0, begin - 1)));
             const std::size_t index = std::stoul(segment);
             if (index > node->size())
-                throw InputError(file, field,
-                                 fmt::format("index {} is past the end of a list of {}", index,
-                                             node->size()));
+                throw InputError(
+                    file, field,
+                    fmt::format("index {} is past the end of a list of {}", index, node->size()));
             if (index == node->size())
                 node->push_back(last ? json() : json::object());
             node = &(*node)[index];
@@ -370,7 +384,17 @@ void apply_override(json& root, const Override& o, const std::string& file) {
             if (!node->is_object())
                 throw InputError(file, field,
                                  fmt::format("'{}' is not an object", o.key.substr(0, begin - 1)));
-            node = &(*node)[segment];
+            json& child = (*node)[segment];
+            if (!last && child.is_null()) {
+                // fluid.blocks.0.min on a scene without a blocks list creates the list.
+                const std::size_t next_end = o.key.find('.', end + 1);
+                const std::string next =
+                    o.key.substr(end + 1, next_end == std::string::npos ? std::string::npos
+                                                                        : next_end - end - 1);
+                if (!next.empty() && std::all_of(next.begin(), next.end(), ::isdigit))
+                    child = json::array();
+            }
+            node = &child;
         }
         if (last)
             break;
@@ -385,13 +409,14 @@ std::string override_path(const std::string& key) {
     return std::regex_replace(key, index, "[$1]");
 }
 
-double default_smoothing_ratio(int dimension) { return dimension == 2 ? 2.5 : 2.2; }
+double default_smoothing_ratio(int dimension) {
+    return dimension == 2 ? 2.5 : 2.2;
+}
 
 // Rough memory of one particle: state, neighbour list, hash lookup, snapshot.
 double bytes_per_particle(int dimension, double smoothing_ratio) {
-    const double neighbours = dimension == 2
-                                  ? M_PI * smoothing_ratio * smoothing_ratio
-                                  : 4.0 / 3.0 * M_PI * std::pow(smoothing_ratio, 3);
+    const double neighbours = dimension == 2 ? M_PI * smoothing_ratio * smoothing_ratio
+                                             : 4.0 / 3.0 * M_PI * std::pow(smoothing_ratio, 3);
     return 3 * dimension * 8 + 2 * 8 + 4 + 4 * neighbours + 4 + 8 + 4 + 2 * dimension * 8 + 2 * 8 +
            4;
 }
@@ -411,19 +436,20 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
 
     s.dimension = r.integer("dimension", d.dimension, 2, 3, "Spatial dimension: 2 or 3.");
     const int dim = s.dimension;
-    s.duration = r.number("duration", d.duration, "s", "Simulated time of the clip.",
-                          Bound::positive);
+    s.duration =
+        r.number("duration", d.duration, "s", "Simulated time of the clip.", Bound::positive);
     s.fps = r.number("fps", d.fps, "1/s", "Frames per simulated second.", Bound::positive);
 
-    s.domain.min = r.vector("domain.min", d.domain.min, dim, "m", "Lower corner of the walls' box.");
-    s.domain.max = r.vector("domain.max", d.domain.max, dim, "m", "Upper corner of the walls' box.");
+    s.domain.min =
+        r.vector("domain.min", d.domain.min, dim, "m", "Lower corner of the walls' box.");
+    s.domain.max =
+        r.vector("domain.max", d.domain.max, dim, "m", "Upper corner of the walls' box.");
 
-    s.fluid.spacing = r.number("fluid.spacing", d.fluid.spacing, "m",
-                               "Lattice spacing of the particles in the fluid blocks.",
-                               Bound::positive);
-    const std::size_t block_count =
-        r.list("fluid.blocks", "one block, the dam-break column",
-               "Boxes filled with fluid particles on the lattice.");
+    s.fluid.spacing =
+        r.number("fluid.spacing", d.fluid.spacing, "m",
+                 "Lattice spacing of the particles in the fluid blocks.", Bound::positive);
+    const std::size_t block_count = r.list("fluid.blocks", "one block, the dam-break column",
+                                           "Boxes filled with fluid particles on the lattice.");
     if (r.present("fluid.blocks"))
         s.fluid.blocks.assign(block_count, FluidBlock{});
     for (std::size_t i = 0; i < std::max<std::size_t>(block_count, 1); ++i) {
@@ -451,8 +477,8 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         "rest density.",
         Bound::positive);
 
-    s.material.rest_density = r.number("material.rest_density", d.material.rest_density,
-                                       "kg/m^3", "Rest density rho0.", Bound::positive);
+    s.material.rest_density = r.number("material.rest_density", d.material.rest_density, "kg/m^3",
+                                       "Rest density rho0.", Bound::positive);
     s.material.bulk_modulus =
         r.number("material.bulk_modulus", d.material.bulk_modulus, "Pa",
                  "Bulk modulus K of the linear law p = K (rho - rho0) / rho0; speed of sound "
@@ -477,13 +503,13 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.effects.gravity = r.present("effects") ? gravity : d.effects.gravity;
 
     s.render.size = r.image_size("render.size", d.render.size, "Image width and height.");
-    s.render.colour = r.choice("render.colour", d.render.colour, {"velocity", "density", "pressure"},
-                               "Field the particles are coloured by.");
+    s.render.colour =
+        r.choice("render.colour", d.render.colour, {"velocity", "density", "pressure"},
+                 "Field the particles are coloured by.");
     s.render.backend = r.choice("render.backend", d.render.backend, {"auto", "egl", "osmesa"},
                                 "Headless GL context.");
-    s.render.camera.position =
-        r.optional_vector("render.camera.position", 3, "m", "frames the domain",
-                          "Camera position (3D scenes).");
+    s.render.camera.position = r.optional_vector(
+        "render.camera.position", 3, "m", "frames the domain", "Camera position (3D scenes).");
     s.render.camera.target = r.optional_vector("render.camera.target", 3, "m", "domain centre",
                                                "Point the camera looks at (3D scenes).");
     s.render.camera.fov = r.number("render.camera.fov", d.render.camera.fov, "degrees",
@@ -499,8 +525,8 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
             r.fail("domain", fmt::format("min must be below max on every axis (axis {}: {} >= {})",
                                          "xyz"[a], s.domain.min[a], s.domain.max[a]));
     if (s.render.camera.fov >= 180)
-        r.fail("render.camera.fov", fmt::format("must be below 180 degrees, got {}",
-                                                s.render.camera.fov));
+        r.fail("render.camera.fov",
+               fmt::format("must be below 180 degrees, got {}", s.render.camera.fov));
     if (s.fluid.blocks.empty())
         r.fail("fluid.blocks", "the scene has no fluid: give at least one block");
     const double ratio = s.fluid.smoothing_ratio.value_or(default_smoothing_ratio(dim));
@@ -516,9 +542,9 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
                                       "xyz"[a], b.min[a], b.max[a]));
             const double tolerance = 1e-9 * (s.domain.max[a] - s.domain.min[a]);
             if (b.min[a] < s.domain.min[a] - tolerance || b.max[a] > s.domain.max[a] + tolerance)
-                r.fail(p, fmt::format("the block [{}, {}] on axis {} is outside the domain [{}, {}]",
-                                      b.min[a], b.max[a], "xyz"[a], s.domain.min[a],
-                                      s.domain.max[a]));
+                r.fail(p,
+                       fmt::format("the block [{}, {}] on axis {} is outside the domain [{}, {}]",
+                                   b.min[a], b.max[a], "xyz"[a], s.domain.min[a], s.domain.max[a]));
             // In floating point so that absurd requests are caught before any cast.
             count *= std::floor((b.max[a] - b.min[a]) / s.fluid.spacing + 1e-9);
         }
@@ -538,28 +564,48 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     // Cells are indexed by 64-bit integers: keep coordinates / h far from overflow.
     for (int a = 0; a < dim; ++a)
         if (std::max(std::abs(s.domain.min[a]), std::abs(s.domain.max[a])) / h > 1e15)
-            r.fail("domain", fmt::format("coordinates up to {} m are too far from the origin for "
-                                         "h = {} m",
-                                         std::max(std::abs(s.domain.min[a]),
-                                                  std::abs(s.domain.max[a])),
-                                         h));
+            r.fail("domain",
+                   fmt::format("coordinates up to {} m are too far from the origin for "
+                               "h = {} m",
+                               std::max(std::abs(s.domain.min[a]), std::abs(s.domain.max[a])), h));
     return s;
 }
 
 json parse_json_text(const std::string& text, const std::string& file) {
+    // The keys being read, so an error inside a value can name its field.
+    std::vector<std::string> keys;
+    auto track = [&keys](int, json::parse_event_t event, json& parsed) {
+        if (event == json::parse_event_t::object_start)
+            keys.emplace_back();
+        else if (event == json::parse_event_t::object_end && !keys.empty())
+            keys.pop_back();
+        else if (event == json::parse_event_t::key && !keys.empty())
+            keys.back() = parsed.get<std::string>();
+        return true;
+    };
     try {
-        return json::parse(text, nullptr, true, /*ignore_comments=*/true);
+        return json::parse(text, track, true, /*ignore_comments=*/true);
     } catch (const json::parse_error& e) {
         // Line and column from the byte offset nlohmann reports.
         const std::size_t offset = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
         const std::size_t line = 1 + std::count(text.begin(), text.begin() + offset, '\n');
         const std::size_t line_start = text.rfind('\n', offset == 0 ? 0 : offset - 1);
-        const std::size_t column = line_start == std::string::npos ? offset + 1 : offset - line_start;
+        const std::size_t column =
+            line_start == std::string::npos ? offset + 1 : offset - line_start;
         std::string detail = e.what();
         if (auto colon = detail.find(": ", detail.find("column")); colon != std::string::npos)
             detail = detail.substr(colon + 2);
-        throw InputError(file, "",
-                         fmt::format("invalid JSON at line {}, column {}: {}", line, column, detail));
+        throw InputError(
+            file, "", fmt::format("invalid JSON at line {}, column {}: {}", line, column, detail));
+    } catch (const json::exception& e) {
+        // e.g. a number too large for a double
+        std::string detail = e.what();
+        if (auto bracket = detail.find("] "); bracket != std::string::npos)
+            detail = detail.substr(bracket + 2);
+        std::string field;
+        for (const auto& k : keys)
+            field += (field.empty() ? "" : ".") + k;
+        throw InputError(file, field, detail);
     }
 }
 
@@ -601,8 +647,8 @@ std::vector<KeyDoc> scene_keys() {
     read_fields(json{{"dimension", 3}}, "built-in scene", {}, &docs_3d);
     for (std::size_t i = 0; i < docs.size() && i < docs_3d.size(); ++i) {
         if (docs[i].type != docs_3d[i].type) {
-            docs[i].type = docs[i].type.find("null") != std::string::npos ? "vector or null"
-                                                                           : "vector";
+            docs[i].type =
+                docs[i].type.find("null") != std::string::npos ? "vector or null" : "vector";
             docs[i].default_value += " (2D), " + docs_3d[i].default_value + " (3D)";
         }
     }
@@ -630,8 +676,8 @@ Derived derive(const Scene& s) {
         // Morris et al. 1997, eqs. 10-11), each with its customary safety factor.
         d.dt = 0.4 * d.h / d.sound_speed;
         if (s.material.viscosity > 0)
-            d.dt = std::min(d.dt, 0.125 * d.h * d.h * s.material.rest_density /
-                                      s.material.viscosity);
+            d.dt =
+                std::min(d.dt, 0.125 * d.h * d.h * s.material.rest_density / s.material.viscosity);
         if (s.effects.gravity) {
             double g2 = 0;
             for (int a = 0; a < dim; ++a)
@@ -652,7 +698,9 @@ Derived derive(const Scene& s) {
 json to_json(const Scene& s) {
     const int dim = s.dimension;
     const Derived d = derive(s);
-    auto vec = [dim](const Vec3& v) { return std::vector<double>(v.begin(), v.begin() + dim); };
+    auto vec = [dim](const Vec3& v) {
+        return std::vector<double>(v.begin(), v.begin() + dim);
+    };
     auto optional_vec = [](const std::optional<Vec3>& v) {
         return v ? json(std::vector<double>(v->begin(), v->end())) : json();
     };

@@ -6,24 +6,23 @@
 
 #include <array>
 #include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json_fwd.hpp>
 
 namespace sph {
 
 using Vec3 = std::array<double, 3>;
 
 struct FluidBlock {
-    Vec3 min{0, 0, 0};           // m
+    Vec3 min{0, 0, 0};               // m
     Vec3 max{0.05715, 0.1143, 0.15}; // m
-    Vec3 velocity{0, 0, 0};      // m/s, initial velocity of its particles
+    Vec3 velocity{0, 0, 0};          // m/s, initial velocity of its particles
 };
 
 struct Scene {
-    std::string name = "default";       // output folder name: the file's stem
+    std::string name = "default";        // output folder name: the file's stem
     std::string file = "built-in scene"; // where it came from, for messages
 
     int dimension = 2;     // 2 or 3
@@ -31,14 +30,14 @@ struct Scene {
     double fps = 30;       // frames per simulated second
 
     struct Domain {
-        Vec3 min{0, 0, 0};           // m
-        Vec3 max{0.4, 0.25, 0.15};   // m
+        Vec3 min{0, 0, 0};         // m
+        Vec3 max{0.4, 0.25, 0.15}; // m
     } domain;
 
     struct Fluid {
-        double spacing = 0.05715 / 40;       // m, lattice spacing of the blocks
+        double spacing = 0.05715 / 40; // m, lattice spacing of the blocks
         std::vector<FluidBlock> blocks{FluidBlock{}};
-        std::optional<double> smoothing_ratio; // h / spacing; default 2.5 (2D), 2.2 (3D)
+        std::optional<double> smoothing_ratio;  // h / spacing; default 2.5 (2D), 2.2 (3D)
         std::optional<double> smoothing_length; // m, overrides the ratio
         std::optional<double> mass;             // kg; default: rest density on the lattice
     } fluid;

@@ -1,8 +1,7 @@
 #include "io/stats_csv.hpp"
 
-#include <stdexcept>
-
 #include <fmt/format.h>
+#include <stdexcept>
 
 namespace sph {
 
@@ -14,7 +13,9 @@ StatsCsv::StatsCsv(const std::filesystem::path& path) : path_(path) {
     std::fflush(file_);
 }
 
-StatsCsv::~StatsCsv() { finish(); }
+StatsCsv::~StatsCsv() {
+    finish();
+}
 
 void StatsCsv::write(const Snapshot& f) {
     const FrameStats& s = f.stats;

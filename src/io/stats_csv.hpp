@@ -2,10 +2,10 @@
 // stats.csv: one row per frame (README, "Outputs"). Rows are flushed as they
 // are written, so a run that stops early keeps every frame so far.
 
+#include "io/frame_sink.hpp"
+
 #include <cstdio>
 #include <filesystem>
-
-#include "io/frame_sink.hpp"
 
 namespace sph {
 

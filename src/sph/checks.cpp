@@ -9,8 +9,8 @@ NonFiniteError::NonFiniteError(std::uint64_t step_, Real time_, std::uint32_t pa
     : std::runtime_error(fmt::format("simulation became non-finite at step {} (t = {:.6g} s): "
                                      "particle {} has {} = {}",
                                      step_, time_, particle_, quantity_, value_)),
-      step(step_), time(time_), particle(particle_), quantity(std::move(quantity_)),
-      value(value_) {}
+      step(step_), time(time_), particle(particle_), quantity(std::move(quantity_)), value(value_) {
+}
 
 template <int D>
 void check_finite(const State<D>& state, std::uint64_t step, Real time) {
@@ -23,9 +23,11 @@ void check_finite(const State<D>& state, std::uint64_t step, Real time) {
         throw NonFiniteError(step, time, state.id[i], name, value);
     };
     // A cheap combined test first; the precise search runs only on failure.
+    // Squared speeds are in it so that a velocity too large to square (the
+    // kinetic energy would be infinite) counts as a blow-up too.
     Real sum = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        sum += state.density[i] + state.pressure[i];
+        sum += state.density[i] + state.pressure[i] + squared_length<D>(state.velocity[i]);
         for (int a = 0; a < D; ++a)
             sum += state.acceleration[i][a] + state.velocity[i][a] + state.position[i][a];
     }
@@ -45,6 +47,11 @@ void check_finite(const State<D>& state, std::uint64_t step, Real time) {
             for (int a = 0; a < D; ++a)
                 if (!std::isfinite((*field)[i][a]))
                     fail(i, name, a, (*field)[i][a]);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        const Real speed2 = squared_length<D>(state.velocity[i]);
+        if (!std::isfinite(speed2))
+            fail(i, "speed squared", -1, speed2);
     }
     // The sum overflowed although every value is finite: values are huge.
     throw NonFiniteError(step, time, 0, "sum of all state values (overflow)", sum);

@@ -2,12 +2,12 @@
 // Numerical trouble is detected and named, never silently dropped: after every
 // step the state is scanned for non-finite values.
 
+#include "sph/state.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-
-#include "sph/state.hpp"
 
 namespace sph {
 

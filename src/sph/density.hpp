@@ -2,11 +2,11 @@
 // Density by kernel summation over the neighbours, the particle itself included
 // (Müller et al. 2003, eq. 3; the seed's density):  rho_i = sum_j m W(|r_i - r_j|).
 
-#include <cmath>
-
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"
+
+#include <cmath>
 
 namespace sph {
 

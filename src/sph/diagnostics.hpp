@@ -1,10 +1,10 @@
 #pragma once
 // Per-frame figures written to stats.csv.
 
-#include <cstddef>
-
 #include "sph/params.hpp"
 #include "sph/state.hpp"
+
+#include <cstddef>
 
 namespace sph {
 

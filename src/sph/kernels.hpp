@@ -8,15 +8,17 @@
 //   dW(r)       radial derivative dW/dr (<= 0 inside the support)
 //   grad(x, r)  gradient of W at offset x with |x| = r > 0
 
-#include <numbers>
-
 #include "sph/vec.hpp"
+
+#include <numbers>
 
 namespace sph {
 
 namespace detail {
 constexpr Real pi = std::numbers::pi_v<Real>;
-inline Real cube(Real x) { return x * x * x; }
+inline Real cube(Real x) {
+    return x * x * x;
+}
 inline Real pow_int(Real x, int n) {
     Real y = 1;
     for (int i = 0; i < n; ++i)

@@ -2,10 +2,10 @@
 // Filling boxes with particles on a regular lattice, and the rest mass that
 // makes such a lattice have exactly the rest density.
 
+#include "sph/vec.hpp"
+
 #include <cmath>
 #include <cstddef>
-
-#include "sph/vec.hpp"
 
 namespace sph {
 

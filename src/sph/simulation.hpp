@@ -4,11 +4,11 @@
 // scene. Simulation time advances in steps of params.dt, independent of the
 // frame rate; callers take frames whenever time crosses k / fps.
 
-#include <cstdint>
-#include <memory>
-
 #include "sph/checks.hpp"
 #include "sph/solvers/solver.hpp"
+
+#include <cstdint>
+#include <memory>
 
 namespace sph {
 

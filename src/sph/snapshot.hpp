@@ -3,11 +3,11 @@
 // simulation: a copy of the particle fields without the dimension in the type.
 // The renderer and the writers never touch State or the solver.
 
-#include <cstdint>
-#include <vector>
-
 #include "sph/diagnostics.hpp"
 #include "sph/state.hpp"
+
+#include <cstdint>
+#include <vector>
 
 namespace sph {
 

@@ -4,9 +4,9 @@
 // touches all of them. Arrays that only one solver or effect needs live in that
 // solver or effect, not here.
 
-#include <vector>
-
 #include "sph/vec.hpp"
+
+#include <vector>
 
 namespace sph {
 

@@ -3,13 +3,13 @@
 // built once from the scene: an effect the scene does not name is not in the
 // list, allocates nothing and costs nothing per step.
 
-#include <memory>
-#include <string_view>
-#include <vector>
-
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"
+
+#include <memory>
+#include <string_view>
+#include <vector>
 
 namespace sph {
 

@@ -16,7 +16,9 @@ class Gravity final : public Effect<D> {
         for (std::size_t i = 0; i < n; ++i)
             state.acceleration[i] += g_;
     }
-    const Vec<D>& acceleration() const { return g_; }
+    const Vec<D>& acceleration() const {
+        return g_;
+    }
 
   private:
     Vec<D> g_;

@@ -1,13 +1,15 @@
 #include "sph/neighbours/neighbour_search.hpp"
 
-#include <stdexcept>
-
 #include "sph/neighbours/all_pairs.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
 
+#include <stdexcept>
+
 namespace sph {
 
-std::vector<std::string> neighbour_search_names() { return {"hash", "all_pairs"}; }
+std::vector<std::string> neighbour_search_names() {
+    return {"hash", "all_pairs"};
+}
 
 template <int D>
 std::unique_ptr<NeighbourSearch<D>> make_neighbour_search(std::string_view name) {

@@ -2,14 +2,14 @@
 // The interface every neighbour search implements, and the factory that picks
 // one by the name used in scenes (`solver.neighbour_search`).
 
+#include "sph/neighbours/neighbour_list.hpp"
+#include "sph/vec.hpp"
+
 #include <memory>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "sph/neighbours/neighbour_list.hpp"
-#include "sph/vec.hpp"
 
 namespace sph {
 

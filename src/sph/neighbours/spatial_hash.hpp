@@ -6,9 +6,9 @@
 // Detection of Deformable Objects", with wrap-around unsigned arithmetic so
 // negative cell coordinates hash correctly.
 
-#include <utility>
-
 #include "sph/neighbours/neighbour_search.hpp"
+
+#include <utility>
 
 namespace sph {
 
@@ -31,7 +31,7 @@ class SpatialHash final : public NeighbourSearch<D> {
     Real cell_size_ = 1;
     std::uint32_t table_size_ = 1;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> lookup_; // (key, particle), sorted
-    std::vector<std::uint32_t> start_;                             // per key, into lookup_
+    std::vector<std::uint32_t> start_;                            // per key, into lookup_
 };
 
 } // namespace sph

@@ -1,13 +1,13 @@
 #include "sph/solvers/seed.hpp"
 
-#include <algorithm>
-#include <cmath>
-
 #include "sph/boundary.hpp"
 #include "sph/density.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/integrate.hpp"
 #include "sph/kernels.hpp"
+
+#include <algorithm>
+#include <cmath>
 
 namespace sph {
 

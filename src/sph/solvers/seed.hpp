@@ -11,8 +11,7 @@ class SeedSolver final : public Solver<D> {
   public:
     std::string_view name() const override { return "seed"; }
     void step(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
-    void update_fields(const Params<D>& params, State<D>& state,
-                       StepContext<D>& context) override;
+    void update_fields(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
 };
 
 // The seed's interaction force summed for every particle and divided by its

@@ -1,12 +1,14 @@
 #include "sph/solvers/solver.hpp"
 
-#include <stdexcept>
-
 #include "sph/solvers/seed.hpp"
+
+#include <stdexcept>
 
 namespace sph {
 
-std::vector<std::string> solver_names() { return {"seed"}; }
+std::vector<std::string> solver_names() {
+    return {"seed"};
+}
 
 template <int D>
 std::unique_ptr<Solver<D>> make_solver(std::string_view name) {

@@ -2,13 +2,13 @@
 // The interface every solver implements. A solver's step() reads like its
 // algorithm: a named call per stage, the stages themselves in their own files.
 
+#include "sph/effects/effect.hpp"
+#include "sph/neighbours/neighbour_search.hpp"
+
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "sph/effects/effect.hpp"
-#include "sph/neighbours/neighbour_search.hpp"
 
 namespace sph {
 

@@ -1,0 +1,512 @@
+// End to end through the real program (src/cli/): outputs of a run, exit
+// codes, messages, and that bad input leaves nothing behind.
+
+#include "io/scene.hpp"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A fresh folder under the system's temporary folder, removed with everything
+// in it when the test ends.
+class TempFolder {
+  public:
+    TempFolder() {
+        static int count = 0;
+        path_ = fs::temp_directory_path() / fmt::format("sphclip_test_{}_{}", ::getpid(), count++);
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempFolder() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    TempFolder(const TempFolder&) = delete;
+    TempFolder& operator=(const TempFolder&) = delete;
+
+    const fs::path& path() const { return path_; }
+    fs::path operator/(const std::string& name) const { return path_ / name; }
+
+  private:
+    fs::path path_;
+};
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+    std::vector<std::string> parts;
+    std::string part;
+    std::istringstream in(text);
+    while (std::getline(in, part, separator))
+        parts.push_back(part);
+    return parts;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+std::string shell_quote(const std::string& word) {
+    std::string quoted = "'";
+    for (char c : word)
+        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+struct Result {
+    int exit_code = -1;
+    std::string output; // stdout and stderr together
+};
+
+// Runs sphclip with `args` in the folder `cwd`. Idle OpenMP threads sleep
+// rather than spin: on a machine whose cores are busy with other work,
+// spinning threads make two-thread runs a hundred times slower.
+Result sphclip(const TempFolder& tmp, const std::vector<std::string>& args,
+               const fs::path& cwd = fs::current_path()) {
+    const fs::path log = tmp / "sphclip.log";
+    std::string command = fmt::format("cd {} && OMP_WAIT_POLICY=passive {}",
+                                      shell_quote(cwd.string()), shell_quote(SPHCLIP_EXE));
+    for (const auto& arg : args)
+        command += fmt::format(" {}", shell_quote(arg));
+    command += fmt::format(" > {} 2>&1", shell_quote(log.string()));
+    const int status = std::system(command.c_str());
+    Result result;
+    result.exit_code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.output = read_text(log);
+    return result;
+}
+
+// `sphclip run SCENE --out OUT` writing data outputs only, with `extra` flags.
+Result run_scene(const TempFolder& tmp, const fs::path& scene, const fs::path& out,
+                 const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args{"run",      scene.string(), "--out",  out.string(),
+                                  "--no-png", "--no-mp4",     "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return sphclip(tmp, args);
+}
+
+struct Csv {
+    std::string header;
+    std::vector<std::vector<std::string>> rows;
+
+    std::size_t column(const std::string& name) const {
+        const auto names = split(header, ',');
+        const auto it = std::find(names.begin(), names.end(), name);
+        REQUIRE(it != names.end());
+        return std::size_t(it - names.begin());
+    }
+    double number(std::size_t row, const std::string& name) const {
+        return std::stod(rows.at(row).at(column(name)));
+    }
+};
+
+Csv read_csv(const fs::path& path) {
+    const auto lines = split(read_text(path), '\n');
+    Csv csv;
+    if (lines.empty())
+        return csv;
+    csv.header = lines[0];
+    for (std::size_t i = 1; i < lines.size(); ++i)
+        csv.rows.push_back(split(lines[i], ','));
+    return csv;
+}
+
+// stats.csv without its last column, the wall-clock seconds.
+std::string stats_without_wall_time(const fs::path& path) {
+    std::string out;
+    for (const auto& line : split(read_text(path), '\n'))
+        out += line.substr(0, line.rfind(',')) + "\n";
+    return out;
+}
+
+// 6 x 6 = 36 particles, 3 frames (t = 0, 0.025, 0.05).
+const std::string tiny_2d = R"({
+    // a small block in the corner of a small box
+    "domain": {"min": [0, 0], "max": [0.1, 0.1]},
+    "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
+    "duration": 0.05,
+    "fps": 40
+})";
+constexpr std::size_t tiny_2d_particles = 36;
+
+// 6 x 6 x 6 = 216 particles, 3 frames.
+const std::string tiny_3d = R"({
+    "dimension": 3,
+    "domain": {"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]},
+    "fluid": {"spacing": 0.01, "blocks": [{"min": [0, 0, 0], "max": [0.06, 0.06, 0.06]}]},
+    "duration": 0.05,
+    "fps": 40
+})";
+constexpr std::size_t tiny_3d_particles = 216;
+
+const std::string stats_header =
+    "frame,time,steps,dt,particles,density_avg,density_max,density_error_avg_pct,"
+    "density_error_max_pct,kinetic_energy,max_speed,wall_s";
+
+fs::path write_scene(const TempFolder& tmp, const std::string& text,
+                     const std::string& name = "scene.json") {
+    write_text(tmp / name, text);
+    return tmp / name;
+}
+
+// Checks everything `run --export csv --export vtk` writes for a completed run.
+void check_run_outputs(const fs::path& out, int dimension, std::size_t particles,
+                       std::size_t frames, double fps) {
+    // stats.csv: one row per frame, taken when the time crosses k / fps.
+    const Csv stats = read_csv(out / "stats.csv");
+    CHECK(stats.header == stats_header);
+    REQUIRE(stats.rows.size() == frames);
+    for (std::size_t k = 0; k < frames; ++k) {
+        INFO("frame " << k);
+        REQUIRE(stats.rows[k].size() == 12);
+        CHECK(stats.number(k, "frame") == double(k));
+        CHECK(stats.number(k, "particles") == double(particles));
+        const double time = stats.number(k, "time");
+        const double dt = stats.number(k, "dt");
+        CHECK(dt > 0);
+        // Times are written with 9 significant digits.
+        CHECK(time >= double(k) / fps - 1e-8);
+        CHECK(time < double(k) / fps + dt * (1 + 1e-5));
+        if (k > 0) {
+            CHECK(time >= stats.number(k - 1, "time"));
+            CHECK(stats.number(k, "steps") >= stats.number(k - 1, "steps"));
+        }
+    }
+    CHECK(stats.number(0, "time") == 0);
+    CHECK(stats.number(0, "steps") == 0);
+
+    // Particle exports: a CSV and a VTK file per frame, and the time series.
+    const std::string csv_header =
+        dimension == 2 ? "x,y,vx,vy,density,pressure" : "x,y,z,vx,vy,vz,density,pressure";
+    std::set<fs::path> expected{out / "stats.csv", out / "run.json", out / "particles.pvd",
+                                out / "particles"};
+    const std::string pvd = read_text(out / "particles.pvd");
+    for (std::size_t k = 0; k < frames; ++k) {
+        INFO("frame " << k);
+        const std::string stem = fmt::format("frame_{:05d}", k);
+        const Csv frame = read_csv(out / "particles" / (stem + ".csv"));
+        CHECK(frame.header == csv_header);
+        CHECK(frame.rows.size() == particles);
+        for (const auto& row : frame.rows)
+            REQUIRE(row.size() == std::size_t(2 * dimension + 2));
+        const std::string vtp = read_text(out / "particles" / (stem + ".vtp"));
+        CHECK(contains(vtp, fmt::format("NumberOfPoints=\"{}\"", particles)));
+        CHECK(contains(vtp, "</VTKFile>"));
+        CHECK(contains(pvd, fmt::format("file=\"particles/{}.vtp\"", stem)));
+        expected.insert(out / "particles" / (stem + ".csv"));
+        expected.insert(out / "particles" / (stem + ".vtp"));
+    }
+    CHECK(std::size_t(std::count(pvd.begin(), pvd.end(), '\n')) == frames + 5);
+
+    // Nothing else: no temporary files left from the atomic writes.
+    for (const auto& entry : fs::recursive_directory_iterator(out)) {
+        INFO(entry.path().string());
+        CHECK(expected.count(entry.path()) == 1);
+    }
+
+    // run.json: the record of the run, with the scene as resolved.
+    const json run = json::parse(read_text(out / "run.json"));
+    CHECK(run.at("status") == "completed");
+    CHECK(run.at("particles") == particles);
+    CHECK(run.at("frames") == frames);
+    CHECK(run.at("steps").get<double>() == stats.number(frames - 1, "steps"));
+    CHECK(run.at("wall_s").get<double>() >= 0);
+    const json& scene = run.at("scene");
+    CHECK(scene.at("dimension") == dimension);
+    CHECK(scene.at("fluid").at("mass").get<double>() > 0);
+    CHECK(scene.at("fluid").at("smoothing_length").get<double>() > 0);
+    CHECK(scene.at("solver").at("dt").get<double>() == Approx(stats.number(0, "dt")).epsilon(1e-5));
+    // The resolved scene reads back as the same scene.
+    CHECK(sph::to_json(sph::parse_scene(scene.dump(), "run.json", {})) == scene);
+}
+
+} // namespace
+
+TEST_CASE("run writes stats, particle exports and run.json for a 2D scene", "[cli]") {
+    TempFolder tmp;
+    const fs::path out = tmp / "out";
+    const auto result =
+        run_scene(tmp, write_scene(tmp, tiny_2d), out, {"--export", "csv", "--export", "vtk"});
+    INFO(result.output);
+    REQUIRE(result.exit_code == 0);
+    CHECK(result.output.empty()); // --quiet
+    check_run_outputs(out, 2, tiny_2d_particles, 3, 40);
+}
+
+TEST_CASE("run writes stats, particle exports and run.json for a 3D scene", "[cli]") {
+    TempFolder tmp;
+    const fs::path out = tmp / "out";
+    const auto result =
+        run_scene(tmp, write_scene(tmp, tiny_3d), out, {"--export", "csv", "--export", "vtk"});
+    INFO(result.output);
+    REQUIRE(result.exit_code == 0);
+    check_run_outputs(out, 3, tiny_3d_particles, 3, 40);
+}
+
+TEST_CASE("run without --out writes to out/<scene name>/", "[cli]") {
+    TempFolder tmp;
+    const auto result = sphclip(
+        tmp, {"run", write_scene(tmp, tiny_2d, "corner.json").string(), "--no-png", "--no-mp4"},
+        tmp.path());
+    INFO(result.output);
+    REQUIRE(result.exit_code == 0);
+    CHECK(contains(result.output, "36 particles")); // the summary line without --quiet
+    CHECK(read_csv(tmp / "out/corner/stats.csv").rows.size() == 3);
+    CHECK(fs::exists(tmp / "out/corner/run.json"));
+}
+
+TEST_CASE("a second run in the same folder leaves no frames of the first", "[cli]") {
+    TempFolder tmp;
+    const fs::path scene = write_scene(tmp, tiny_2d);
+    const fs::path out = tmp / "out";
+    const std::vector<std::string> exports{"--export", "csv", "--export", "vtk"};
+    auto longer = exports;
+    longer.insert(longer.end(), {"--duration", "0.1"});
+    REQUIRE(run_scene(tmp, scene, out, longer).exit_code == 0);
+    REQUIRE(fs::exists(out / "particles/frame_00004.csv"));
+
+    const auto result = run_scene(tmp, scene, out, exports);
+    INFO(result.output);
+    REQUIRE(result.exit_code == 0);
+    check_run_outputs(out, 2, tiny_2d_particles, 3, 40);
+}
+
+TEST_CASE("bad input exits 2, names the file and field, and writes nothing", "[cli]") {
+    TempFolder tmp;
+    const fs::path out = tmp / "out";
+    const fs::path scene = tmp / "scene.json";
+    write_text(scene, tiny_2d);
+
+    auto expect_refused = [&](const std::vector<std::string>& args, const fs::path& out_folder,
+                              const std::vector<std::string>& words) {
+        const auto result = sphclip(tmp, args);
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        for (const auto& word : words)
+            CHECK(contains(result.output, word));
+        CHECK_FALSE(fs::exists(out_folder));
+    };
+    auto refused_run = [&](const std::vector<std::string>& extra,
+                           const std::vector<std::string>& words) {
+        std::vector<std::string> args{"run",        scene.string(), "--out",
+                                      out.string(), "--no-png",     "--no-mp4"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        expect_refused(args, out, words);
+    };
+
+    SECTION("a missing scene file") {
+        fs::remove(scene);
+        refused_run({}, {scene.string(), "cannot read the scene file"});
+    }
+    SECTION("invalid JSON") {
+        write_text(scene, "{\n  \"fps\": 30,\n  \"duration\": ,\n}\n");
+        refused_run({}, {scene.string(), "invalid JSON at line 3, column 15"});
+    }
+    SECTION("an unknown key") {
+        write_text(scene, R"({"material": {"viscosty": 1}})");
+        refused_run({},
+                    {scene.string() + ": material.viscosty: unknown key", "'material.viscosity'"});
+    }
+    SECTION("a value of the wrong type") {
+        write_text(scene, R"({"fps": "ten"})");
+        refused_run({}, {scene.string() + ": fps: expected a number"});
+    }
+    SECTION("a value out of range") {
+        write_text(scene, R"({"fluid": {"spacing": -0.01}})");
+        refused_run({}, {scene.string() + ": fluid.spacing: must be greater than 0"});
+    }
+    SECTION("--set without '='") {
+        refused_run({"--set", "fps"}, {"command line: --set: expected KEY=VALUE"});
+    }
+    SECTION("--set with a bad value") {
+        refused_run({"--set", "fps=0"}, {"fps (from --set)"});
+    }
+    SECTION("--set with an unknown key") {
+        refused_run({"--set", "solver.nmae=seed"}, {"solver.nmae (from --set)", "'solver.name'"});
+    }
+    SECTION("an unknown flag") {
+        refused_run({"--bogus"}, {"--bogus"});
+    }
+    SECTION("--threads 0") {
+        refused_run({"--threads", "0"}, {"--threads"});
+    }
+    SECTION("an unknown export format") {
+        refused_run({"--export", "pdf"}, {"--export"});
+    }
+    SECTION("an output folder that cannot be created") {
+        const fs::path proc = fmt::format("/proc/sphclip_test_{}", ::getpid());
+        expect_refused({"run", scene.string(), "--out", proc.string(), "--no-png", "--no-mp4"},
+                       proc, {"--out", proc.string()});
+    }
+    SECTION("an output folder under a regular file") {
+        write_text(tmp / "file", "keep me");
+        const fs::path under = tmp / "file" / "out";
+        expect_refused({"run", scene.string(), "--out", under.string(), "--no-png", "--no-mp4"},
+                       under, {"--out"});
+        CHECK(read_text(tmp / "file") == "keep me");
+    }
+    SECTION("an output folder that is a regular file") {
+        write_text(out, "keep me");
+        const auto result = sphclip(tmp, {"run", scene.string(), "--out", out.string()});
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "--out"));
+        CHECK(read_text(out) == "keep me");
+    }
+}
+
+// Fails while nlohmann's number-overflow exception escapes the scene parser:
+// the program exits 1 with a bare library message.
+TEST_CASE("a number too large for a double exits 2 naming the field", "[cli]") {
+    TempFolder tmp;
+    const fs::path out = tmp / "out";
+    const fs::path scene = write_scene(tmp, R"({"fps": 1e999})");
+    const auto result = run_scene(tmp, scene, out);
+    INFO(result.output);
+    CHECK(result.exit_code == 2);
+    CHECK(contains(result.output, scene.string() + ": fps"));
+    CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("the keys command lists every scene key, and --version the version", "[cli]") {
+    TempFolder tmp;
+    const auto keys = sphclip(tmp, {"keys"});
+    INFO(keys.output);
+    CHECK(keys.exit_code == 0);
+    CHECK(contains(keys.output, "material.viscosity"));
+    for (const auto& key : sph::scene_keys())
+        CHECK(contains(keys.output, key.path + " "));
+
+    const auto markdown = sphclip(tmp, {"keys", "--markdown"});
+    CHECK(markdown.exit_code == 0);
+    CHECK(markdown.output.starts_with("| key |"));
+    CHECK(contains(markdown.output, "| `material.viscosity` |"));
+
+    const auto version = sphclip(tmp, {"--version"});
+    CHECK(version.exit_code == 0);
+    CHECK(contains(version.output, SPHCLIP_VERSION));
+
+    const auto nothing = sphclip(tmp, {});
+    CHECK(nothing.exit_code == 2); // a subcommand is required
+}
+
+TEST_CASE("the duration and fps flags change the number of frames", "[cli]") {
+    TempFolder tmp;
+    const fs::path scene = write_scene(tmp, tiny_2d);
+    const fs::path out = tmp / "out";
+    auto frames_with = [&](const std::vector<std::string>& flags) {
+        const auto result = run_scene(tmp, scene, out, flags);
+        INFO(result.output);
+        REQUIRE(result.exit_code == 0);
+        return read_csv(out / "stats.csv").rows.size();
+    };
+    CHECK(frames_with({}) == 3);                    // 0.05 s at 40 fps
+    CHECK(frames_with({"--duration", "0.1"}) == 5); // 0.1 s at 40 fps
+    CHECK(frames_with({"--fps", "100"}) == 6);      // 0.05 s at 100 fps
+    CHECK(frames_with({"--duration", "0.1", "--fps", "20"}) == 3);
+    // The flags win over --set, whatever the order.
+    CHECK(frames_with({"--fps", "100", "--set", "fps=20"}) == 6);
+}
+
+TEST_CASE("one thread and two threads write the same data", "[cli]") {
+    TempFolder tmp;
+    // 20 x 20 particles, so that both threads have work; 71 steps.
+    const fs::path scene = write_scene(tmp, R"({
+        "domain": {"min": [0, 0], "max": [0.2, 0.2]},
+        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.1, 0.1]}]},
+        "duration": 0.025,
+        "fps": 40
+    })");
+    for (const char* threads : {"1", "2"}) {
+        const auto result = run_scene(tmp, scene, tmp / fmt::format("out{}", threads),
+                                      {"--threads", threads, "--export", "csv"});
+        INFO(result.output);
+        REQUIRE(result.exit_code == 0);
+    }
+    const fs::path one = tmp / "out1", two = tmp / "out2";
+    CHECK(json::parse(read_text(two / "run.json")).at("threads") == 2);
+    CHECK(read_csv(one / "stats.csv").rows.size() == 2);
+    CHECK(stats_without_wall_time(one / "stats.csv") == stats_without_wall_time(two / "stats.csv"));
+    for (const char* frame : {"frame_00000.csv", "frame_00001.csv"})
+        CHECK(read_text(one / "particles" / frame) == read_text(two / "particles" / frame));
+}
+
+namespace {
+// A time step far above the viscous limit (0.125 h^2 rho0 / mu, about 2e-9 s
+// here): explicit viscosity amplifies the velocities every step until they
+// overflow, about 50 steps in, after frame 1 (t = 0.025 s).
+Result run_blowing_up(const TempFolder& tmp, const fs::path& out) {
+    return run_scene(tmp, write_scene(tmp, tiny_2d), out,
+                     {"--set", "solver.dt=1e-3", "--set", "material.viscosity=1e8", "--duration",
+                      "1", "--export", "csv"});
+}
+} // namespace
+
+TEST_CASE("a run that blows up exits 3, names the step and particle, keeps its frames", "[cli]") {
+    TempFolder tmp;
+    const fs::path out = tmp / "out";
+    const auto result = run_blowing_up(tmp, out);
+    INFO(result.output);
+    REQUIRE(result.exit_code == 3);
+    CHECK(contains(result.output, "non-finite at step "));
+    CHECK(contains(result.output, "particle "));
+
+    const json run = json::parse(read_text(out / "run.json"));
+    CHECK(run.at("status") == "non_finite");
+    CHECK(contains(run.at("error").get<std::string>(), "non-finite"));
+    const auto frames = run.at("frames").get<std::size_t>();
+    CHECK(frames >= 1);
+    CHECK(frames < 40); // it stopped early
+
+    // The frames before the blow-up are kept, complete; none after it.
+    const Csv stats = read_csv(out / "stats.csv");
+    CHECK(stats.header == stats_header);
+    REQUIRE(stats.rows.size() == frames);
+    for (std::size_t k = 0; k < frames; ++k) {
+        CHECK(stats.number(k, "frame") == double(k));
+        CHECK(read_csv(out / "particles" / fmt::format("frame_{:05d}.csv", k)).rows.size() ==
+              tiny_2d_particles);
+    }
+    CHECK(run.at("steps").get<double>() > stats.number(frames - 1, "steps"));
+    CHECK_FALSE(fs::exists(out / "particles" / fmt::format("frame_{:05d}.csv", frames)));
+}
+
+// Fails while only the state is checked: velocities near 1e160 m/s are finite,
+// but their kinetic energy is not, and the frame is written with "inf".
+TEST_CASE("the frames kept before a blow-up hold finite statistics", "[cli]") {
+    TempFolder tmp;
+    const fs::path out = tmp / "out";
+    const auto result = run_blowing_up(tmp, out);
+    REQUIRE(result.exit_code == 3);
+    const Csv stats = read_csv(out / "stats.csv");
+    for (std::size_t k = 0; k < stats.rows.size(); ++k) {
+        INFO("frame " << k);
+        CHECK(std::isfinite(stats.number(k, "kinetic_energy")));
+        CHECK(std::isfinite(stats.number(k, "max_speed")));
+    }
+}

@@ -510,3 +510,27 @@ TEST_CASE("the frames kept before a blow-up hold finite statistics", "[cli]") {
         CHECK(std::isfinite(stats.number(k, "max_speed")));
     }
 }
+
+TEST_CASE("SIGTERM stops a run between steps and keeps its frames", "[cli]") {
+    TempFolder tmp;
+    const fs::path out = tmp / "out";
+    // The built-in dam break for a long time: it is still running when the
+    // signal arrives, a second after its first frame is written.
+    const fs::path log = tmp / "sphclip.log";
+    const std::string command = fmt::format(
+        "OMP_WAIT_POLICY=passive {} run --out {} --duration 100 --fps 100 --quiet > {} 2>&1 & "
+        "pid=$!; while [ ! -s {} ]; do sleep 0.1; done; sleep 1; kill -TERM $pid; wait $pid",
+        shell_quote(SPHCLIP_EXE), shell_quote(out.string()), shell_quote(log.string()),
+        shell_quote((out / "stats.csv").string()));
+    const int status = std::system(("bash -c " + shell_quote(command)).c_str());
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 130);
+    const std::string output = read_text(log);
+    CHECK(contains(output, "interrupted"));
+    const auto run = nlohmann::json::parse(read_text(out / "run.json"));
+    CHECK(run.at("status") == "interrupted");
+    const Csv stats = read_csv(out / "stats.csv");
+    REQUIRE(stats.rows.size() >= 1);
+    CHECK(stats.rows.size() < 10001);
+    CHECK(run.at("frames").get<std::size_t>() == stats.rows.size());
+}

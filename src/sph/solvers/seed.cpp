@@ -85,28 +85,44 @@ Vec<D> coincident_direction(std::uint32_t id_a, std::uint32_t id_b) {
 // can compute it once per pair and apply it with opposite signs. Evaluated
 // here as one expression whose every operation commutes, the two sides are
 // exact negatives of each other.
+namespace {
+
+// The pair term with its kernels built once per stage, not once per pair.
+template <int D>
+struct SeedPairTerm {
+    const Params<D>& params;
+    Spiky<D> spiky;
+    ViscosityLaplacian<D> viscosity;
+
+    explicit SeedPairTerm(const Params<D>& p) : params(p), spiky(p.h), viscosity(p.h) {}
+
+    Vec<D> operator()(const State<D>& state, std::size_t i, std::size_t j) const {
+        const Vec<D> r_ij = state.position[i] - state.position[j];
+        const Real r = std::sqrt(squared_length<D>(r_ij));
+        Vec<D> direction;
+        if (r > 1e-12 * params.h) {
+            direction = r_ij / r;
+        } else {
+            direction = coincident_direction<D>(std::min(state.id[i], state.id[j]),
+                                                std::max(state.id[i], state.id[j]));
+            if (state.id[i] > state.id[j])
+                direction = -direction;
+        }
+        const Real mean_pressure = Real(0.5) * (state.pressure[i] + state.pressure[j]);
+        const Vec<D> pressure_term = -mean_pressure * spiky.dW(r) * direction;
+        const Vec<D> viscous_term =
+            -params.viscosity * viscosity.laplacian(r) * (state.velocity[i] - state.velocity[j]);
+        return (params.mass / (state.density[i] * state.density[j])) *
+               (pressure_term + viscous_term);
+    }
+};
+
+} // namespace
+
 template <int D>
 Vec<D> seed_pair_acceleration(const Params<D>& params, const State<D>& state, std::size_t i,
                               std::size_t j) {
-    const Spiky<D> spiky(params.h);
-    const ViscosityLaplacian<D> viscosity(params.h);
-    const Vec<D> r_ij = state.position[i] - state.position[j];
-    const Real r = std::sqrt(squared_length<D>(r_ij));
-    Vec<D> direction;
-    if (r > 1e-12 * params.h) {
-        direction = r_ij / r;
-    } else {
-        const bool i_first = state.id[i] < state.id[j];
-        direction = coincident_direction<D>(std::min(state.id[i], state.id[j]),
-                                            std::max(state.id[i], state.id[j]));
-        if (!i_first)
-            direction = -direction;
-    }
-    const Real mean_pressure = Real(0.5) * (state.pressure[i] + state.pressure[j]);
-    const Vec<D> pressure_term = -mean_pressure * spiky.dW(r) * direction;
-    const Vec<D> viscous_term =
-        -params.viscosity * viscosity.laplacian(r) * (state.velocity[i] - state.velocity[j]);
-    return (params.mass / (state.density[i] * state.density[j])) * (pressure_term + viscous_term);
+    return SeedPairTerm<D>(params)(state, i, j);
 }
 
 template <int D>
@@ -122,11 +138,12 @@ template <int D>
 void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
                               State<D>& state) {
     const std::size_t n = state.size();
+    const SeedPairTerm<D> term(params);
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         Vec<D> acceleration(0);
         for (std::uint32_t j : neighbours.of(i))
-            acceleration += seed_pair_acceleration(params, state, i, j);
+            acceleration += term(state, i, j);
         state.acceleration[i] = acceleration;
     }
 }

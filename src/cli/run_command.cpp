@@ -90,8 +90,8 @@ struct RunRecord {
 
 template <int D>
 int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& options) {
-    Simulation<D> sim = make_simulation<D>(scene);
     const Derived derived = derive(scene);
+    Simulation<D> sim = make_simulation<D>(scene, derived);
     const std::uint64_t frames =
         static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1;
 

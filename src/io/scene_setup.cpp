@@ -29,10 +29,10 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
 }
 
 template <int D>
-State<D> make_initial_state(const Scene& scene) {
+State<D> make_initial_state(const Scene& scene, const Derived& derived) {
     const Real s = scene.fluid.spacing;
     State<D> state;
-    state.resize(derive(scene).particles);
+    state.resize(derived.particles);
     std::size_t next = 0;
     for (const auto& block : scene.fluid.blocks) {
         glm::vec<D, std::size_t> count;
@@ -67,9 +67,8 @@ EffectList<D> make_effects(const Scene& scene) {
 }
 
 template <int D>
-Simulation<D> make_simulation(const Scene& scene) {
-    const Derived derived = derive(scene);
-    return Simulation<D>(make_params<D>(scene, derived), make_initial_state<D>(scene),
+Simulation<D> make_simulation(const Scene& scene, const Derived& derived) {
+    return Simulation<D>(make_params<D>(scene, derived), make_initial_state<D>(scene, derived),
                          make_solver<D>(scene.solver.name),
                          make_neighbour_search<D>(scene.solver.neighbour_search),
                          make_effects<D>(scene));
@@ -77,11 +76,11 @@ Simulation<D> make_simulation(const Scene& scene) {
 
 template Params<2> make_params<2>(const Scene&, const Derived&);
 template Params<3> make_params<3>(const Scene&, const Derived&);
-template State<2> make_initial_state<2>(const Scene&);
-template State<3> make_initial_state<3>(const Scene&);
+template State<2> make_initial_state<2>(const Scene&, const Derived&);
+template State<3> make_initial_state<3>(const Scene&, const Derived&);
 template EffectList<2> make_effects<2>(const Scene&);
 template EffectList<3> make_effects<3>(const Scene&);
-template Simulation<2> make_simulation<2>(const Scene&);
-template Simulation<3> make_simulation<3>(const Scene&);
+template Simulation<2> make_simulation<2>(const Scene&, const Derived&);
+template Simulation<3> make_simulation<3>(const Scene&, const Derived&);
 
 } // namespace sph

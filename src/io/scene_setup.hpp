@@ -12,13 +12,18 @@ Params<D> make_params(const Scene& scene, const Derived& derived);
 
 // Every block filled on its lattice, ids in creation order.
 template <int D>
-State<D> make_initial_state(const Scene& scene);
+State<D> make_initial_state(const Scene& scene, const Derived& derived);
 
 // Exactly the effects the scene lists, in a fixed order.
 template <int D>
 EffectList<D> make_effects(const Scene& scene);
 
 template <int D>
-Simulation<D> make_simulation(const Scene& scene);
+Simulation<D> make_simulation(const Scene& scene, const Derived& derived);
+
+template <int D>
+Simulation<D> make_simulation(const Scene& scene) {
+    return make_simulation<D>(scene, derive(scene));
+}
 
 } // namespace sph

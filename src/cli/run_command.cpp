@@ -7,6 +7,7 @@
 #include "io/particle_export.hpp"
 #include "io/scene_setup.hpp"
 #include "io/stats_csv.hpp"
+#include "render/render_sink.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -95,6 +96,19 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
     const std::uint64_t frames =
         static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1;
 
+    // The GL context first: when none can be made, nothing has been written.
+    RenderSink* render = nullptr;
+    std::unique_ptr<RenderSink> render_sink;
+    if (options.png || options.mp4) {
+        const std::string backend =
+            options.backend.empty() ? scene.render.backend : options.backend;
+        render_sink = std::make_unique<RenderSink>(
+            make_gl_context(backend), make_render_settings(scene, derived),
+            options.png ? folder / "frames" : fs::path(),
+            options.mp4 ? folder / "clip.mp4" : fs::path(), scene.fps, Mp4Options{});
+        render = render_sink.get();
+    }
+
     std::vector<std::unique_ptr<FrameSink>> sinks;
     sinks.push_back(std::make_unique<StatsCsv>(folder / "stats.csv"));
     for (const auto& format : options.exports) {
@@ -104,6 +118,8 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
         else if (format == "vtk")
             sinks.push_back(std::make_unique<ParticleVtk>(folder));
     }
+    if (render_sink)
+        sinks.push_back(std::move(render_sink));
 
     RunRecord record;
     record.path = folder / "run.json";
@@ -122,8 +138,16 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
         {"solver", std::string(sim.solver().name())},
         {"neighbour_search", std::string(sim.search().name())},
         {"outputs",
-         {{"stats", "stats.csv"}, {"exports", options.exports}, {"png", false}, {"mp4", false}}},
+         {{"stats", "stats.csv"},
+          {"exports", options.exports},
+          {"png", options.png ? json("frames/") : json(false)},
+          {"mp4", options.mp4 ? json("clip.mp4") : json(false)}}},
     };
+    if (render)
+        record.document["gl"] = {{"backend", render->gl_info().backend},
+                                 {"vendor", render->gl_info().vendor},
+                                 {"renderer", render->gl_info().renderer},
+                                 {"version", render->gl_info().version}};
     record.save("running", 0, 0, 0, 0);
 
     if (!options.quiet) {
@@ -131,10 +155,10 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
                    "dt = {:.4g} s, {} frames of {:.4g} s -> {}\n",
                    scene.name, D, scene.solver.name, sim.state().size(), derived.h, derived.mass,
                    derived.dt, frames, scene.duration, folder.string());
-        if (options.png || options.mp4)
-            fmt::print("sphclip: this build has no renderer yet; writing data outputs only "
-                       "(stats.csv, run.json{})\n",
-                       options.exports.empty() ? "" : ", particle exports");
+        if (render)
+            fmt::print("sphclip: rendering {}x{} with {} ({}, OpenGL {})\n", scene.render.size[0],
+                       scene.render.size[1], render->gl_info().backend,
+                       render->gl_info().renderer, render->gl_info().version);
     }
 
     Progress progress(!options.quiet && isatty(STDOUT_FILENO));
@@ -150,11 +174,37 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
 
     Snapshot snapshot;
     std::uint64_t written = 0;
+    std::vector<double> simulate_seconds;
+    // Per frame: where the time went (run.json "timings").
+    auto record_timings = [&] {
+        json frames = json::array();
+        double total[4] = {0, 0, 0, 0};
+        for (std::size_t k = 0; k < simulate_seconds.size(); ++k) {
+            const FrameCost cost =
+                render && k < render->costs().size() ? render->costs()[k] : FrameCost{};
+            const double row[4] = {simulate_seconds[k], cost.render_s, cost.readback_s,
+                                   cost.encode_s};
+            for (int c = 0; c < 4; ++c)
+                total[c] += row[c];
+            frames.push_back({{"frame", k},
+                              {"simulate_s", row[0]},
+                              {"render_s", row[1]},
+                              {"readback_s", row[2]},
+                              {"encode_s", row[3]}});
+        }
+        record.document["timings"] = {{"total",
+                                       {{"simulate_s", total[0]},
+                                        {"render_s", total[1]},
+                                        {"readback_s", total[2]},
+                                        {"encode_s", total[3]}}},
+                                      {"frames", frames}};
+    };
     try {
         for (std::uint64_t k = 0; k < frames; ++k) {
             // A frame is taken when simulation time crosses k / fps.
             const double frame_time = double(k) / scene.fps;
             const double tolerance = 1e-9 * sim.params().dt;
+            const auto simulate_start = std::chrono::steady_clock::now();
             while (sim.time() < frame_time - tolerance) {
                 if (interrupt_signal.load() != 0)
                     break;
@@ -163,6 +213,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             if (interrupt_signal.load() != 0) {
                 progress.done();
                 finish_sinks();
+                record_timings();
                 record.save("interrupted", written, sim.steps(), sim.time(), wall(),
                             fmt::format("stopped by signal {}", interrupt_signal.load()));
                 fmt::print(stderr, "sphclip: interrupted at t = {:.4g} s; {} frames kept in {}\n",
@@ -170,6 +221,9 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
                 return exit_interrupted;
             }
             sim.update_fields();
+            simulate_seconds.push_back(std::chrono::duration<double>(
+                                           std::chrono::steady_clock::now() - simulate_start)
+                                           .count());
             snapshot.frame = k;
             snapshot.steps = sim.steps();
             snapshot.time = sim.time();
@@ -185,6 +239,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
     } catch (const NonFiniteError& e) {
         progress.done();
         finish_sinks();
+        record_timings();
         record.save("non_finite", written, sim.steps(), sim.time(), wall(), e.what());
         fmt::print(stderr,
                    "sphclip: error: {}\nsphclip: the {} frames before it are kept in {}. Try a "
@@ -196,6 +251,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
     progress.done();
     finish_sinks();
     const double seconds = wall();
+    record_timings();
     record.save("completed", written, sim.steps(), sim.time(), seconds);
     if (!options.quiet)
         fmt::print("sphclip: done: {} steps, {} frames in {:.2f} s ({:.3g} particle-steps/s)\n",

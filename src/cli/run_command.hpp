@@ -19,6 +19,7 @@ struct RunOptions {
     bool png = true;
     bool mp4 = true;
     bool quiet = false;
+    std::string backend; // --backend; empty: the scene's render.backend
     std::string command_line; // recorded in run.json
 };
 

@@ -506,6 +506,22 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.render.colour =
         r.choice("render.colour", d.render.colour, {"velocity", "density", "pressure"},
                  "Field the particles are coloured by.");
+    s.render.colour_map =
+        r.choice("render.colour_map", d.render.colour_map, {"auto", "viridis", "turbo", "diverging"},
+                 "Colour map; auto: viridis for speed, diverging around rho0 for density, turbo "
+                 "for pressure.");
+    if (const auto range = r.optional_vector("render.range", 2, "field unit", "from the scene",
+                                             "Field values at the two ends of the colour map; by "
+                                             "default speed 0..sqrt(2 g H), density rho0 +- 3%, "
+                                             "pressure 0..rho0 g H (H: domain height).")) {
+        if (!((*range)[0] < (*range)[1]))
+            r.fail("render.range", fmt::format("the low end must be below the high end, got [{}, {}]",
+                                               (*range)[0], (*range)[1]));
+        s.render.range = std::array<double, 2>{(*range)[0], (*range)[1]};
+    }
+    s.render.spheres = r.choice("render.spheres", d.render.spheres, {"impostor", "mesh"},
+                                "How spheres are drawn: ray-cast impostors (fast) or the seed's "
+                                "instanced meshes.");
     s.render.backend = r.choice("render.backend", d.render.backend, {"auto", "egl", "osmesa"},
                                 "Headless GL context.");
     s.render.camera.position = r.optional_vector(
@@ -731,6 +747,9 @@ json to_json(const Scene& s) {
         {"render",
          {{"size", s.render.size},
           {"colour", s.render.colour},
+          {"colour_map", s.render.colour_map},
+          {"range", s.render.range ? json(*s.render.range) : json()},
+          {"spheres", s.render.spheres},
           {"backend", s.render.backend},
           {"camera",
            {{"position", optional_vec(s.render.camera.position)},

@@ -62,6 +62,9 @@ struct Scene {
     struct Render {
         std::array<int, 2> size{1280, 720}; // px
         std::string colour = "velocity";    // density | velocity | pressure
+        std::string colour_map = "auto";    // auto | viridis | turbo | diverging
+        std::optional<std::array<double, 2>> range; // field values at the map's ends
+        std::string spheres = "impostor";   // impostor | mesh
         std::string backend = "auto";       // auto | egl | osmesa
         struct Camera {
             std::optional<Vec3> position; // m; default frames the domain

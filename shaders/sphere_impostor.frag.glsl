@@ -1,0 +1,27 @@
+// Ray-cast the sphere behind the quad; write its true depth so spheres
+// intersect correctly with each other and with meshes.
+in vec3 v_point;
+flat in vec3 v_centre;
+flat in vec3 v_colour;
+
+uniform mat4 u_projection;
+uniform float u_radius;
+uniform bool u_orthographic;
+
+out vec4 f_colour;
+
+void main() {
+    vec3 origin = u_orthographic ? vec3(v_point.xy, v_centre.z + 2.0 * u_radius) : vec3(0.0);
+    vec3 direction = u_orthographic ? vec3(0.0, 0.0, -1.0) : normalize(v_point);
+    vec3 offset = origin - v_centre;
+    float b = dot(offset, direction);
+    float c = dot(offset, offset) - u_radius * u_radius;
+    float discriminant = b * b - c;
+    if (discriminant < 0.0)
+        discard;
+    vec3 hit = origin + (-b - sqrt(discriminant)) * direction;
+    vec3 normal = (hit - v_centre) / u_radius;
+    vec4 clip = u_projection * vec4(hit, 1.0);
+    gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
+    f_colour = vec4(shade(v_colour, normal, -direction), 1.0);
+}

@@ -1,0 +1,463 @@
+#include "render/frame_renderer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <embedded_shaders.hpp>
+#include <fmt/format.h>
+#include <glad/gl.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "render/colour_maps.hpp"
+#include "render/sphere_geometry.hpp"
+#include "render/text.hpp"
+
+namespace sph {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+GLuint compile(GLenum stage, std::string_view common, std::string_view body) {
+    const std::string source = "#version 450 core\n" + std::string(common) + std::string(body);
+    const GLuint shader = glCreateShader(stage);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[4096];
+        glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+        glDeleteShader(shader);
+        throw std::runtime_error(std::string("shader compilation failed: ") + log);
+    }
+    return shader;
+}
+
+GLuint link(std::string_view vertex, std::string_view fragment, std::string_view common) {
+    const GLuint vs = compile(GL_VERTEX_SHADER, common, vertex);
+    const GLuint fs = compile(GL_FRAGMENT_SHADER, common, fragment);
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[4096];
+        glGetProgramInfoLog(program, sizeof log, nullptr, log);
+        glDeleteProgram(program);
+        throw std::runtime_error(std::string("shader link failed: ") + log);
+    }
+    return program;
+}
+
+void check_gl(const char* where) {
+    if (const GLenum error = glGetError(); error != GL_NO_ERROR)
+        throw std::runtime_error(fmt::format("OpenGL error 0x{:04x} in {}", error, where));
+}
+
+// One overlay vertex: position and colour-map coordinate (< 0: flat colour).
+struct OverlayVertex {
+    float x, y, z, ramp;
+};
+
+} // namespace
+
+RenderSettings make_render_settings(const Scene& scene, const Derived& derived) {
+    RenderSettings r;
+    r.width = scene.render.size[0];
+    r.height = scene.render.size[1];
+    r.dimension = scene.dimension;
+    r.field = scene.render.colour;
+    r.spheres = scene.render.spheres;
+    r.radius = 0.5 * scene.fluid.spacing;
+    for (int a = 0; a < scene.dimension; ++a) {
+        r.domain_min[a] = scene.domain.min[a];
+        r.domain_max[a] = scene.domain.max[a];
+    }
+    // Physical scales of the scene for ranges it does not fix.
+    const double height = r.domain_max.y - r.domain_min.y;
+    double g = 0;
+    if (scene.effects.gravity)
+        for (int a = 0; a < scene.dimension; ++a)
+            g += (*scene.effects.gravity)[a] * (*scene.effects.gravity)[a];
+    g = std::sqrt(g);
+    double block_speed = 0;
+    for (const auto& b : scene.fluid.blocks)
+        block_speed = std::max(block_speed, std::hypot(b.velocity[0], b.velocity[1], b.velocity[2]));
+    const double rho0 = scene.material.rest_density;
+    if (r.field == "velocity") {
+        r.label = "speed (m/s)";
+        r.colour_map = "viridis";
+        const double top = std::max(std::sqrt(2 * g * height) + block_speed, 1e-6);
+        r.range = {0, top};
+    } else if (r.field == "density") {
+        r.label = "density (kg/m^3)";
+        r.colour_map = "diverging";
+        r.range = {0.97 * rho0, 1.03 * rho0};
+    } else {
+        r.label = "pressure (Pa)";
+        r.colour_map = "turbo";
+        r.range = {0, std::max(rho0 * g * height, 1e-6)};
+    }
+    if (scene.render.colour_map != "auto")
+        r.colour_map = scene.render.colour_map;
+    if (scene.render.range)
+        r.range = *scene.render.range;
+
+    r.fov = scene.render.camera.fov;
+    const glm::dvec3 centre = 0.5 * (r.domain_min + r.domain_max);
+    r.camera_target = centre;
+    if (scene.render.camera.target)
+        r.camera_target = {(*scene.render.camera.target)[0], (*scene.render.camera.target)[1],
+                           (*scene.render.camera.target)[2]};
+    if (scene.render.camera.position) {
+        r.camera_position = {(*scene.render.camera.position)[0],
+                             (*scene.render.camera.position)[1],
+                             (*scene.render.camera.position)[2]};
+    } else {
+        // From the front, right and above, far enough that the domain's
+        // bounding sphere fits the vertical field of view.
+        const double radius = 0.5 * glm::length(r.domain_max - r.domain_min);
+        const double distance = radius / std::sin(glm::radians(0.5 * r.fov));
+        r.camera_position = r.camera_target + distance * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
+    }
+    (void)derived;
+    return r;
+}
+
+struct FrameRenderer::Gl {
+    GLuint impostor_program = 0, mesh_program = 0, overlay_program = 0;
+    GLuint impostor_vao = 0, mesh_vao = 0, overlay_vao = 0;
+    GLuint quad_buffer = 0, instance_buffer = 0, mesh_vertex_buffer = 0, mesh_index_buffer = 0;
+    GLuint overlay_buffer = 0;
+    GLsizei mesh_index_count = 0;
+    std::size_t instance_capacity = 0;
+    GLuint colour_map = 0;
+    GLuint msaa_fbo = 0, msaa_colour = 0, msaa_depth = 0;
+    GLuint resolve_fbo = 0, resolve_colour = 0;
+    std::vector<float> instances;
+    std::vector<OverlayVertex> lines, overlay_triangles;
+    std::vector<float> text;
+
+    ~Gl() {
+        glDeleteProgram(impostor_program);
+        glDeleteProgram(mesh_program);
+        glDeleteProgram(overlay_program);
+        const GLuint vaos[] = {impostor_vao, mesh_vao, overlay_vao};
+        glDeleteVertexArrays(3, vaos);
+        const GLuint buffers[] = {quad_buffer, instance_buffer, mesh_vertex_buffer,
+                                  mesh_index_buffer, overlay_buffer};
+        glDeleteBuffers(5, buffers);
+        glDeleteTextures(1, &colour_map);
+        const GLuint framebuffers[] = {msaa_fbo, resolve_fbo};
+        glDeleteFramebuffers(2, framebuffers);
+        const GLuint renderbuffers[] = {msaa_colour, msaa_depth, resolve_colour};
+        glDeleteRenderbuffers(3, renderbuffers);
+    }
+};
+
+FrameRenderer::FrameRenderer(const RenderSettings& settings)
+    : settings_(settings), gl_(std::make_unique<Gl>()) {
+    Gl& g = *gl_;
+    g.impostor_program = link(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag,
+                              shaders::lighting);
+    g.mesh_program = link(shaders::sphere_mesh_vert, shaders::sphere_mesh_frag, shaders::lighting);
+    g.overlay_program = link(shaders::overlay_vert, shaders::overlay_frag, "");
+
+    // Per-particle data, shared by both sphere techniques: x, y, z, scalar.
+    glGenBuffers(1, &g.instance_buffer);
+    auto bind_instances = [&g] {
+        glBindBuffer(GL_ARRAY_BUFFER, g.instance_buffer);
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 16, nullptr);
+        glVertexAttribDivisor(1, 1);
+        glEnableVertexAttribArray(2);
+        glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 16, reinterpret_cast<void*>(12));
+        glVertexAttribDivisor(2, 1);
+    };
+
+    glGenVertexArrays(1, &g.impostor_vao);
+    glBindVertexArray(g.impostor_vao);
+    const float corners[] = {-1, -1, 1, -1, -1, 1, 1, 1};
+    glGenBuffers(1, &g.quad_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, g.quad_buffer);
+    glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+    bind_instances();
+
+    glGenVertexArrays(1, &g.mesh_vao);
+    glBindVertexArray(g.mesh_vao);
+    const SphereMesh mesh = make_icosphere(settings.mesh_subdivisions);
+    glGenBuffers(1, &g.mesh_vertex_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, g.mesh_vertex_buffer);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertices.size() * sizeof mesh.vertices[0]),
+                 mesh.vertices.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glGenBuffers(1, &g.mesh_index_buffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.mesh_index_buffer);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                 mesh.indices.data(), GL_STATIC_DRAW);
+    g.mesh_index_count = GLsizei(mesh.indices.size());
+    bind_instances();
+
+    glGenVertexArrays(1, &g.overlay_vao);
+    glBindVertexArray(g.overlay_vao);
+    glGenBuffers(1, &g.overlay_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, g.overlay_buffer);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(OverlayVertex), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(OverlayVertex),
+                          reinterpret_cast<void*>(12));
+    glBindVertexArray(0);
+
+    const auto table = colour_map_table(settings.colour_map, 256);
+    glGenTextures(1, &g.colour_map);
+    glBindTexture(GL_TEXTURE_1D, g.colour_map);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage1D(GL_TEXTURE_1D, 0, GL_RGB8, 256, 0, GL_RGB, GL_UNSIGNED_BYTE, table.data());
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+
+    // Draw multisampled, resolve into a plain buffer for reading back.
+    const int w = settings.width, h = settings.height;
+    glGenRenderbuffers(1, &g.msaa_colour);
+    glBindRenderbuffer(GL_RENDERBUFFER, g.msaa_colour);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, settings.samples, GL_RGBA8, w, h);
+    glGenRenderbuffers(1, &g.msaa_depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, g.msaa_depth);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, settings.samples, GL_DEPTH_COMPONENT24, w,
+                                     h);
+    glGenFramebuffers(1, &g.msaa_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              g.msaa_colour);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g.msaa_depth);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("the multisampled framebuffer is incomplete");
+    glGenRenderbuffers(1, &g.resolve_colour);
+    glBindRenderbuffer(GL_RENDERBUFFER, g.resolve_colour);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    glGenFramebuffers(1, &g.resolve_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, g.resolve_fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              g.resolve_colour);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("the resolve framebuffer is incomplete");
+    check_gl("renderer set-up");
+}
+
+FrameRenderer::~FrameRenderer() = default;
+
+Image FrameRenderer::render(const Snapshot& frame) {
+    Gl& g = *gl_;
+    const RenderSettings& s = settings_;
+    const int w = s.width, h = s.height;
+    const auto start = Clock::now();
+
+    // Positions relative to the domain centre: floats stay exact far from the origin.
+    const glm::dvec3 origin = 0.5 * (s.domain_min + s.domain_max);
+    const int dim = frame.dimension;
+    const std::size_t n = frame.size();
+    g.instances.resize(n * 4);
+    for (std::size_t i = 0; i < n; ++i) {
+        double scalar = 0;
+        if (s.field == "velocity") {
+            double v2 = 0;
+            for (int a = 0; a < dim; ++a)
+                v2 += frame.velocity[i * dim + a] * frame.velocity[i * dim + a];
+            scalar = std::sqrt(v2);
+        } else if (s.field == "density") {
+            scalar = frame.density[i];
+        } else {
+            scalar = frame.pressure[i];
+        }
+        for (int a = 0; a < 3; ++a)
+            g.instances[i * 4 + a] = a < dim ? float(frame.position[i * dim + a] - origin[a]) : 0.f;
+        g.instances[i * 4 + 3] = float(scalar);
+    }
+
+    // Cameras: 2D looks at the plane with the domain fitted left of the colour
+    // bar; 3D uses the scene's perspective camera.
+    const bool orthographic = s.dimension == 2;
+    glm::mat4 view(1.f), projection(1.f);
+    const double bar_space = 150, margin = 24, caption_space = 36;
+    if (orthographic) {
+        const glm::dvec3 size = s.domain_max - s.domain_min;
+        const double available_w = std::max(1.0, w - bar_space - 2 * margin);
+        const double available_h = std::max(1.0, h - caption_space - 2 * margin);
+        const double scale = std::min(available_w / size.x, available_h / size.y); // px per m
+        const double left = s.domain_min.x - origin.x - (margin + 0.5 * (available_w - scale * size.x)) / scale;
+        const double bottom = s.domain_min.y - origin.y - (margin + 0.5 * (available_h - scale * size.y)) / scale;
+        const double depth = 10 + 4 * s.radius;
+        projection = glm::ortho(left, left + w / scale, bottom, bottom + h / scale, -depth, depth);
+    } else {
+        view = glm::lookAt(glm::vec3(s.camera_position - origin), glm::vec3(s.camera_target - origin),
+                           glm::vec3(0, 1, 0));
+        const double distance = glm::length(s.camera_position - s.camera_target);
+        const double extent = glm::length(s.domain_max - s.domain_min);
+        projection = glm::perspective(glm::radians(float(s.fov)), float(w) / float(h),
+                                      float(std::max(1e-4 * distance, 0.01 * s.radius)),
+                                      float(4 * (distance + extent)));
+    }
+
+    glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
+    glViewport(0, 0, w, h);
+    glClearColor(0.08f, 0.09f, 0.11f, 1.f);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_MULTISAMPLE);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_1D, g.colour_map);
+
+    if (n > 0) {
+        glBindBuffer(GL_ARRAY_BUFFER, g.instance_buffer);
+        if (n > g.instance_capacity) {
+            g.instance_capacity = n + n / 4;
+            glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(g.instance_capacity * 16), nullptr,
+                         GL_STREAM_DRAW);
+        }
+        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(n * 16), g.instances.data());
+        const bool impostor = s.spheres == "impostor";
+        const GLuint program = impostor ? g.impostor_program : g.mesh_program;
+        glUseProgram(program);
+        glUniformMatrix4fv(glGetUniformLocation(program, "u_view"), 1, GL_FALSE, glm::value_ptr(view));
+        glUniformMatrix4fv(glGetUniformLocation(program, "u_projection"), 1, GL_FALSE,
+                           glm::value_ptr(projection));
+        glUniform1f(glGetUniformLocation(program, "u_radius"), float(s.radius));
+        glUniform1i(glGetUniformLocation(program, "u_orthographic"), orthographic);
+        glUniform1i(glGetUniformLocation(program, "u_colour_map"), 0);
+        glUniform2f(glGetUniformLocation(program, "u_range"), float(s.range[0]), float(s.range[1]));
+        if (impostor) {
+            glBindVertexArray(g.impostor_vao);
+            glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(n));
+        } else {
+            glBindVertexArray(g.mesh_vao);
+            glDrawElementsInstanced(GL_TRIANGLES, g.mesh_index_count, GL_UNSIGNED_INT, nullptr,
+                                    GLsizei(n));
+        }
+    }
+
+    // The domain box, depth-tested so the fluid hides its far edges.
+    g.lines.clear();
+    const glm::vec3 lo(s.domain_min - origin), hi(s.domain_max - origin);
+    if (orthographic) {
+        const glm::vec3 c[4] = {{lo.x, lo.y, 0}, {hi.x, lo.y, 0}, {hi.x, hi.y, 0}, {lo.x, hi.y, 0}};
+        for (int k = 0; k < 4; ++k) {
+            g.lines.push_back({c[k].x, c[k].y, c[k].z, -1});
+            g.lines.push_back({c[(k + 1) % 4].x, c[(k + 1) % 4].y, 0, -1});
+        }
+    } else {
+        for (int a = 0; a < 3; ++a)
+            for (int corner = 0; corner < 4; ++corner) {
+                glm::vec3 p = lo, q;
+                const int b = (a + 1) % 3, c = (a + 2) % 3;
+                p[b] = corner & 1 ? hi[b] : lo[b];
+                p[c] = corner & 2 ? hi[c] : lo[c];
+                q = p;
+                q[a] = hi[a];
+                g.lines.push_back({p.x, p.y, p.z, -1});
+                g.lines.push_back({q.x, q.y, q.z, -1});
+            }
+    }
+    glUseProgram(g.overlay_program);
+    glBindVertexArray(g.overlay_vao);
+    glUniform1i(glGetUniformLocation(g.overlay_program, "u_colour_map"), 0);
+    auto draw_overlay = [&](const std::vector<OverlayVertex>& vertices, GLenum mode,
+                            const glm::mat4& transform, glm::vec4 colour) {
+        if (vertices.empty())
+            return;
+        glBindBuffer(GL_ARRAY_BUFFER, g.overlay_buffer);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(OverlayVertex)),
+                     vertices.data(), GL_STREAM_DRAW);
+        glUniformMatrix4fv(glGetUniformLocation(g.overlay_program, "u_transform"), 1, GL_FALSE,
+                           glm::value_ptr(transform));
+        glUniform4fv(glGetUniformLocation(g.overlay_program, "u_colour"), 1, glm::value_ptr(colour));
+        glDrawArrays(mode, 0, GLsizei(vertices.size()));
+    };
+    draw_overlay(g.lines, GL_LINES, projection * view, {0.55f, 0.58f, 0.62f, 1.f});
+
+    // Colour bar, its labels and the caption, in pixels (y down).
+    glDisable(GL_DEPTH_TEST);
+    const glm::mat4 pixels = glm::ortho(0.f, float(w), float(h), 0.f, -1.f, 1.f);
+    const float text_scale = std::max(1.f, std::round(float(h) / 360.f));
+    const float bar_x = float(w) - bar_space + 20.f, bar_w = 18.f;
+    const float bar_top = caption_space + margin + 20.f * text_scale * 0.5f;
+    const float bar_bottom = float(h) - margin - 10.f;
+    g.overlay_triangles = {{bar_x, bar_bottom, 0, 0},       {bar_x + bar_w, bar_bottom, 0, 0},
+                           {bar_x + bar_w, bar_top, 0, 1},   {bar_x, bar_bottom, 0, 0},
+                           {bar_x + bar_w, bar_top, 0, 1},   {bar_x, bar_top, 0, 1}};
+    draw_overlay(g.overlay_triangles, GL_TRIANGLES, pixels, {1, 1, 1, 1});
+    g.lines = {{bar_x, bar_top, 0, -1},          {bar_x + bar_w, bar_top, 0, -1},
+               {bar_x + bar_w, bar_top, 0, -1},  {bar_x + bar_w, bar_bottom, 0, -1},
+               {bar_x + bar_w, bar_bottom, 0, -1}, {bar_x, bar_bottom, 0, -1},
+               {bar_x, bar_bottom, 0, -1},       {bar_x, bar_top, 0, -1}};
+    for (int k = 0; k <= 4; ++k) {
+        const float y = bar_bottom + (bar_top - bar_bottom) * float(k) / 4.f;
+        g.lines.push_back({bar_x + bar_w, y, 0, -1});
+        g.lines.push_back({bar_x + bar_w + 5.f, y, 0, -1});
+    }
+    draw_overlay(g.lines, GL_LINES, pixels, {0.85f, 0.86f, 0.88f, 1.f});
+
+    g.text.clear();
+    const float glyph_h = 7.f * text_scale;
+    for (int k = 0; k <= 4; ++k) {
+        const double value = s.range[0] + (s.range[1] - s.range[0]) * k / 4.0;
+        const float y = bar_bottom + (bar_top - bar_bottom) * float(k) / 4.f - 0.5f * glyph_h;
+        append_text_triangles(fmt::format("{:.4g}", value), bar_x + bar_w + 9.f, y, text_scale,
+                              g.text);
+    }
+    const float label_w = text_width(s.label, text_scale);
+    append_text_triangles(s.label, std::min(bar_x, float(w) - label_w - 6.f),
+                          bar_top - 2.5f * glyph_h, text_scale, g.text);
+    append_text_triangles(fmt::format("t = {:.3f} s    frame {}", frame.time, frame.frame), margin,
+                          margin * 0.5f + 4.f, text_scale, g.text);
+    g.overlay_triangles.clear();
+    for (std::size_t k = 0; k + 1 < g.text.size(); k += 2)
+        g.overlay_triangles.push_back({g.text[k], g.text[k + 1], 0, -1});
+    draw_overlay(g.overlay_triangles, GL_TRIANGLES, pixels, {0.9f, 0.91f, 0.93f, 1.f});
+    glFinish();
+    timings_.draw_seconds = seconds_since(start);
+
+    // Resolve the samples, read back, and turn the rows top-down.
+    const auto readback_start = Clock::now();
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.msaa_fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, g.resolve_fbo);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.resolve_fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    Image image(w, h);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+    const std::size_t row = std::size_t(w) * 4;
+    std::vector<std::uint8_t> swap(row);
+    for (int y = 0; y < h / 2; ++y) {
+        std::uint8_t* a = image.rgba.data() + std::size_t(y) * row;
+        std::uint8_t* b = image.rgba.data() + std::size_t(h - 1 - y) * row;
+        std::copy(a, a + row, swap.data());
+        std::copy(b, b + row, a);
+        std::copy(swap.begin(), swap.end(), b);
+    }
+    check_gl("frame rendering");
+    timings_.readback_seconds = seconds_since(readback_start);
+    return image;
+}
+
+} // namespace sph

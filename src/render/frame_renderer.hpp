@@ -1,0 +1,63 @@
+#pragma once
+// Draws one frame of particles into an image, in the current GL context:
+// instanced lit spheres coloured through a colour map, the domain box, a
+// colour bar with its range and unit, and a caption. It sees only the
+// Snapshot, never the simulation.
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "io/image.hpp"
+#include "io/scene.hpp"
+#include "sph/snapshot.hpp"
+
+namespace sph {
+
+struct RenderSettings {
+    int width = 1280, height = 720; // px
+    int dimension = 2;
+    std::string field = "velocity";    // velocity | density | pressure
+    std::string label = "speed (m/s)"; // the colour bar's title
+    std::string colour_map = "viridis";
+    std::array<double, 2> range{0, 1}; // field values at the ends of the map
+    std::string spheres = "impostor";  // impostor | mesh
+    int mesh_subdivisions = 1;         // mesh: 80 triangles per sphere
+    double radius = 0.001;             // m, drawn sphere radius
+    glm::dvec3 domain_min{0}, domain_max{1};
+    glm::dvec3 camera_position{0}, camera_target{0}; // 3D
+    double fov = 40;                                  // degrees, vertical
+    int samples = 4;                                  // multisampling
+};
+
+// Settings from the scene's render section; ranges the scene leaves open come
+// from the scene's physics, so colours mean the same in every frame.
+RenderSettings make_render_settings(const Scene& scene, const Derived& derived);
+
+struct FrameTimings {
+    double draw_seconds = 0;     // submitting and finishing the draw
+    double readback_seconds = 0; // resolving and reading the pixels
+};
+
+class FrameRenderer {
+  public:
+    // Needs a current GL 4.5 context; throws std::runtime_error on GL errors.
+    explicit FrameRenderer(const RenderSettings& settings);
+    ~FrameRenderer();
+    FrameRenderer(const FrameRenderer&) = delete;
+    FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+    Image render(const Snapshot& frame);
+    const FrameTimings& last_timings() const { return timings_; }
+    const RenderSettings& settings() const { return settings_; }
+
+  private:
+    struct Gl;
+    RenderSettings settings_;
+    std::unique_ptr<Gl> gl_;
+    FrameTimings timings_;
+};
+
+} // namespace sph

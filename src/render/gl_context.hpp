@@ -1,0 +1,46 @@
+#pragma once
+// A headless OpenGL 4.5 core context, from EGL (no display: Mesa's surfaceless
+// platform or an EGL device such as NVIDIA's) or from OSMesa. Rendering goes to
+// framebuffer objects, so no window system surface is ever needed. One
+// context per process at a time: creating it loads the GL functions.
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sph {
+
+struct GlInfo {
+    std::string backend; // "egl" or "osmesa"
+    std::string vendor, renderer, version;
+};
+
+// No context could be made; the message lists every attempt.
+struct GlContextError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+class GlContext {
+  public:
+    virtual ~GlContext() = default;
+    const GlInfo& info() const { return info_; }
+
+  protected:
+    // Loads the GL functions through `get_proc` and reads vendor and version;
+    // throws GlContextError when the context is not GL 4.5 core capable.
+    void load_functions(void* (*get_proc)(const char*), std::string backend);
+
+  private:
+    GlInfo info_;
+};
+
+// "egl", "osmesa", or "auto" (EGL first, then OSMesa).
+std::unique_ptr<GlContext> make_gl_context(std::string_view backend);
+
+// Each backend's factory; throws GlContextError saying what failed.
+std::unique_ptr<GlContext> make_egl_context();
+std::unique_ptr<GlContext> make_osmesa_context();
+
+} // namespace sph

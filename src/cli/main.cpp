@@ -1,9 +1,11 @@
 // sphclip: scene file -> SPH simulation -> per-frame outputs, on a machine
 // with no screen. See README.md for the command line and exit codes.
 
+#include "cli/compare_command.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/run_command.hpp"
 #include "io/input_error.hpp"
+#include "render/gl_context.hpp"
 
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -65,11 +67,19 @@ int main(int argc, char** argv) {
     run_cmd->add_flag("--no-png", no_png, "Write no PNG frames");
     run_cmd->add_flag("--no-mp4", no_mp4, "Write no MP4 video");
     run_cmd->add_flag("--quiet", run.quiet, "No progress line or summary");
+    run_cmd
+        ->add_option("--backend", run.backend,
+                     "Headless GL context: auto (EGL, then OSMesa), egl or osmesa "
+                     "(default: the scene's render.backend)")
+        ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
 
     bool markdown = false;
     auto* keys_cmd =
         app.add_subcommand("keys", "List every scene key with unit, default, meaning.");
     keys_cmd->add_flag("--markdown", markdown, "As a Markdown table");
+
+    sph::CompareCliOptions compare;
+    auto* compare_cmd = sph::add_compare_command(app, compare);
 
     try {
         app.parse(argc, argv);
@@ -83,6 +93,8 @@ int main(int argc, char** argv) {
             print_keys(markdown);
             return sph::exit_success;
         }
+        if (*compare_cmd)
+            return sph::compare_command(compare);
         if (!scene_path.empty())
             run.scene = scene_path;
         if (!out_path.empty())
@@ -102,6 +114,10 @@ int main(int argc, char** argv) {
         run.mp4 = !no_mp4;
         run.command_line = join_arguments(argc, argv);
         return sph::run_command(run);
+    } catch (const sph::GlContextError& e) {
+        fmt::print(stderr, "sphclip: error: {}\nsphclip: (--no-png --no-mp4 runs need no OpenGL)\n",
+                   e.what());
+        return sph::exit_no_gl_context;
     } catch (const sph::InputError& e) {
         fmt::print(stderr, "sphclip: error: {}\n", e.what());
         return sph::exit_bad_input;

@@ -128,10 +128,11 @@ RenderSettings make_render_settings(const Scene& scene, const Derived& derived) 
                              (*scene.render.camera.position)[1],
                              (*scene.render.camera.position)[2]};
     } else {
-        // From the front, right and above, far enough that the domain's
-        // bounding sphere fits the vertical field of view.
+        // From the front, right and above, at the distance where the domain's
+        // bounding sphere would just fit the vertical field of view; a box
+        // fills less than its sphere, so come a little closer.
         const double radius = 0.5 * glm::length(r.domain_max - r.domain_min);
-        const double distance = radius / std::sin(glm::radians(0.5 * r.fov));
+        const double distance = 0.85 * radius / std::sin(glm::radians(0.5 * r.fov));
         r.camera_position = r.camera_target + distance * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
     }
     (void)derived;
@@ -297,7 +298,12 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // bar; 3D uses the scene's perspective camera.
     const bool orthographic = s.dimension == 2;
     glm::mat4 view(1.f), projection(1.f);
-    const double bar_space = 150, margin = 24, caption_space = 36;
+    // Overlay layout scales with the image: room on the right for the colour
+    // bar and its labels, a caption line on top.
+    const float text_scale = std::max(1.f, std::round(float(h) / 360.f));
+    const double bar_space = std::max(75.0, 150.0 * w / 1280.0);
+    const double margin = std::max(8.0, 24.0 * h / 720.0);
+    const double caption_space = 18.0 * text_scale;
     if (orthographic) {
         const glm::dvec3 size = s.domain_max - s.domain_min;
         const double available_w = std::max(1.0, w - bar_space - 2 * margin);
@@ -315,6 +321,9 @@ Image FrameRenderer::render(const Snapshot& frame) {
         projection = glm::perspective(glm::radians(float(s.fov)), float(w) / float(h),
                                       float(std::max(1e-4 * distance, 0.01 * s.radius)),
                                       float(4 * (distance + extent)));
+        // Centre the view in the part of the image left of the colour bar.
+        projection = glm::translate(glm::mat4(1.f), glm::vec3(float(-bar_space / w), 0.f, 0.f)) *
+                     projection;
     }
 
     glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
@@ -398,10 +407,9 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // Colour bar, its labels and the caption, in pixels (y down).
     glDisable(GL_DEPTH_TEST);
     const glm::mat4 pixels = glm::ortho(0.f, float(w), float(h), 0.f, -1.f, 1.f);
-    const float text_scale = std::max(1.f, std::round(float(h) / 360.f));
-    const float bar_x = float(w) - bar_space + 20.f, bar_w = 18.f;
-    const float bar_top = caption_space + margin + 20.f * text_scale * 0.5f;
-    const float bar_bottom = float(h) - margin - 10.f;
+    const float bar_x = float(w - bar_space) + 8.f * text_scale, bar_w = 9.f * text_scale;
+    const float bar_top = float(caption_space + margin) + 10.f * text_scale;
+    const float bar_bottom = float(h - margin) - 5.f * text_scale;
     g.overlay_triangles = {{bar_x, bar_bottom, 0, 0},       {bar_x + bar_w, bar_bottom, 0, 0},
                            {bar_x + bar_w, bar_top, 0, 1},   {bar_x, bar_bottom, 0, 0},
                            {bar_x + bar_w, bar_top, 0, 1},   {bar_x, bar_top, 0, 1}};
@@ -413,7 +421,7 @@ Image FrameRenderer::render(const Snapshot& frame) {
     for (int k = 0; k <= 4; ++k) {
         const float y = bar_bottom + (bar_top - bar_bottom) * float(k) / 4.f;
         g.lines.push_back({bar_x + bar_w, y, 0, -1});
-        g.lines.push_back({bar_x + bar_w + 5.f, y, 0, -1});
+        g.lines.push_back({bar_x + bar_w + 2.5f * text_scale, y, 0, -1});
     }
     draw_overlay(g.lines, GL_LINES, pixels, {0.85f, 0.86f, 0.88f, 1.f});
 
@@ -422,14 +430,15 @@ Image FrameRenderer::render(const Snapshot& frame) {
     for (int k = 0; k <= 4; ++k) {
         const double value = s.range[0] + (s.range[1] - s.range[0]) * k / 4.0;
         const float y = bar_bottom + (bar_top - bar_bottom) * float(k) / 4.f - 0.5f * glyph_h;
-        append_text_triangles(fmt::format("{:.4g}", value), bar_x + bar_w + 9.f, y, text_scale,
-                              g.text);
+        append_text_triangles(fmt::format("{:.4g}", value), bar_x + bar_w + 4.5f * text_scale, y,
+                              text_scale, g.text);
     }
     const float label_w = text_width(s.label, text_scale);
     append_text_triangles(s.label, std::min(bar_x, float(w) - label_w - 6.f),
                           bar_top - 2.5f * glyph_h, text_scale, g.text);
-    append_text_triangles(fmt::format("t = {:.3f} s    frame {}", frame.time, frame.frame), margin,
-                          margin * 0.5f + 4.f, text_scale, g.text);
+    append_text_triangles(fmt::format("t = {:.3f} s    frame {}", frame.time, frame.frame),
+                          float(margin), float(margin) * 0.5f + 2.f * text_scale, text_scale,
+                          g.text);
     g.overlay_triangles.clear();
     for (std::size_t k = 0; k + 1 < g.text.size(); k += 2)
         g.overlay_triangles.push_back({g.text[k], g.text[k + 1], 0, -1});

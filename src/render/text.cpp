@@ -19,7 +19,9 @@ void append_text_triangles(std::string_view text, float x, float y, float scale,
                            std::vector<float>& xy) {
     // stb_easy_font writes 4 vertices of 16 bytes (x, y, z, colour) per quad.
     std::string copy(text);
-    std::vector<char> buffer(copy.size() * 270 + 64);
+    // stb_easy_font needs about 270 bytes per character on average, more for
+    // some glyphs: leave ample room.
+    std::vector<char> buffer(copy.size() * 1024 + 1024);
     const int quads = stb_easy_font_print(0, 0, copy.data(), nullptr, buffer.data(),
                                           static_cast<int>(buffer.size()));
     const auto* v = reinterpret_cast<const float*>(buffer.data());

@@ -1,0 +1,175 @@
+// The renderer: both headless backends make a GL 4.5 context and draw the
+// same picture (STYLE.md point 13), frames match the golden images under
+// tests/golden/, impostors look like the seed's meshes, and images are the
+// right way up. Set SPHCLIP_UPDATE_GOLDEN=1 to rewrite the golden images
+// (then look at them before committing).
+#include <cstdlib>
+#include <filesystem>
+
+#include <catch2/catch.hpp>
+
+#include "io/image_compare.hpp"
+#include "io/png_io.hpp"
+#include "io/scene_setup.hpp"
+#include "render/colour_maps.hpp"
+#include "render/frame_renderer.hpp"
+#include "render/gl_context.hpp"
+#include "render/sphere_geometry.hpp"
+
+using namespace sph;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A small block moving right, coloured by speed with some variety.
+Scene tiny_scene(int dimension, const std::string& spheres = "impostor") {
+    std::vector<Override> o{{"render.size", "[320,180]"}, {"render.spheres", spheres}};
+    if (dimension == 2) {
+        o.push_back({"domain.max", "[0.1,0.06]"});
+        o.push_back({"fluid.spacing", "0.004"});
+        o.push_back({"fluid.blocks", R"([{"min":[0,0],"max":[0.04,0.04],"velocity":[0.4,0]},
+                                         {"min":[0.06,0.03],"max":[0.08,0.05],"velocity":[0,-1]}])"});
+    } else {
+        o.push_back({"dimension", "3"});
+        o.push_back({"domain.max", "[0.1,0.06,0.05]"});
+        o.push_back({"fluid.spacing", "0.005"});
+        o.push_back({"fluid.blocks",
+                     R"([{"min":[0,0,0],"max":[0.04,0.04,0.05],"velocity":[0.4,0,0]},
+                         {"min":[0.06,0.03,0.01],"max":[0.08,0.05,0.03],"velocity":[0,-1,0]}])"});
+    }
+    return default_scene(o);
+}
+
+template <int D>
+Snapshot initial_snapshot(const Scene& scene) {
+    auto sim = make_simulation<D>(scene);
+    sim.update_fields();
+    Snapshot s;
+    s.frame = 0;
+    s.time = 0;
+    s.stats = measure_frame(sim.params(), sim.state());
+    copy_fields(sim.state(), s);
+    return s;
+}
+
+Image render_scene(const Scene& scene, std::string_view backend) {
+    auto context = make_gl_context(backend);
+    FrameRenderer renderer(make_render_settings(scene, derive(scene)));
+    return scene.dimension == 2 ? renderer.render(initial_snapshot<2>(scene))
+                                : renderer.render(initial_snapshot<3>(scene));
+}
+
+void check_against_golden(const Image& image, const std::string& name) {
+    const fs::path golden = fs::path(SPHCLIP_SOURCE_DIR) / "tests" / "golden" / (name + ".png");
+    if (std::getenv("SPHCLIP_UPDATE_GOLDEN")) {
+        fs::create_directories(golden.parent_path());
+        write_png(golden, image);
+        WARN("rewrote " << golden);
+    }
+    REQUIRE(fs::exists(golden));
+    const CompareResult result = compare_images(read_png(golden), image, CompareOptions{});
+    INFO(name << ": mean difference " << result.mean_difference << ", different "
+              << result.different_percent << "%");
+    if (!result.match)
+        write_png(fs::temp_directory_path() / (name + "_failed.png"), image);
+    CHECK(result.match);
+}
+
+} // namespace
+
+TEST_CASE("both headless backends give an OpenGL 4.5 core context", "[render]") {
+    for (const char* backend : {"egl", "osmesa"}) {
+        INFO(backend);
+        const auto context = make_gl_context(backend);
+        CHECK(context->info().backend == backend);
+        CHECK_FALSE(context->info().renderer.empty());
+        CHECK(context->info().version.find("4.") != std::string::npos);
+    }
+    // auto tries EGL first, and EGL works here.
+    CHECK(make_gl_context("auto")->info().backend == "egl");
+}
+
+TEST_CASE("EGL and OSMesa draw the same frame", "[render]") {
+    for (int dimension : {2, 3}) {
+        const Scene scene = tiny_scene(dimension);
+        const Image egl = render_scene(scene, "egl");
+        const Image osmesa = render_scene(scene, "osmesa");
+        const CompareResult result = compare_images(egl, osmesa, CompareOptions{});
+        INFO("dimension " << dimension << ": mean difference " << result.mean_difference);
+        CHECK(result.match);
+    }
+}
+
+TEST_CASE("frames match the golden images", "[render]") {
+    check_against_golden(render_scene(tiny_scene(2), "auto"), "tiny_2d");
+    check_against_golden(render_scene(tiny_scene(3), "auto"), "tiny_3d");
+}
+
+TEST_CASE("impostors look like the seed's meshes", "[render]") {
+    for (int dimension : {2, 3}) {
+        const Image impostor = render_scene(tiny_scene(dimension, "impostor"), "auto");
+        const Image mesh = render_scene(tiny_scene(dimension, "mesh"), "auto");
+        // An 80-triangle sphere is faceted: the same picture up to its edges.
+        const CompareResult result = compare_images(impostor, mesh, {4.0, 64, 3.0});
+        INFO("dimension " << dimension << ": mean difference " << result.mean_difference
+                          << ", different " << result.different_percent << "%");
+        CHECK(result.match);
+    }
+}
+
+TEST_CASE("images are the right way up and particles where they belong", "[render]") {
+    // One block in the top left corner of a 2D domain.
+    const Scene scene = default_scene({{"render.size", "[200,200]"},
+                                       {"domain.max", "[0.1,0.1]"},
+                                       {"fluid.spacing", "0.004"},
+                                       {"fluid.blocks", R"([{"min":[0,0.07],"max":[0.03,0.1]}])"}});
+    const Image image = render_scene(scene, "auto");
+    REQUIRE(image.width == 200);
+    // Speed 0 is the low end of viridis, purple: count purple pixels (the
+    // caption, box and background are grey) in the upper and lower halves.
+    const auto low = colour_map_table("viridis", 256)[0];
+    REQUIRE(low[2] > low[1] + 30);
+    auto purple = [&](int y0, int y1) {
+        int count = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < 120; ++x) {
+                const std::uint8_t* p = image.pixel(x, y);
+                count += p[2] > p[1] + 30 && p[0] > p[1];
+            }
+        return count;
+    };
+    const int upper = purple(0, 100), lower = purple(100, 200);
+    INFO("purple pixels: upper " << upper << ", lower " << lower);
+    CHECK(upper > 300);
+    CHECK(lower == 0);
+}
+
+TEST_CASE("colour maps run from their low to their high end", "[render]") {
+    for (const auto& name : colour_map_names()) {
+        const auto table = colour_map_table(name, 256);
+        REQUIRE(table.size() == 256);
+        auto luminance = [](const Rgb8& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
+        if (name == "viridis") // sequential: brightness rises throughout
+            for (int i = 1; i < 256; ++i)
+                CHECK(luminance(table[i]) >= luminance(table[i - 1]) - 0.5);
+        if (name == "diverging") { // blue, grey in the middle, red
+            CHECK(table[0][2] > table[0][0]);
+            CHECK(table[255][0] > table[255][2]);
+            const auto mid = table[128];
+            CHECK(std::abs(int(mid[0]) - int(mid[2])) < 20);
+        }
+    }
+    CHECK_THROWS_AS(colour_map_table("jet"), std::invalid_argument);
+}
+
+TEST_CASE("icospheres are closed unit spheres", "[render]") {
+    for (int subdivisions : {0, 1, 2}) {
+        const SphereMesh mesh = make_icosphere(subdivisions);
+        CHECK(mesh.indices.size() / 3 == std::size_t(20 * std::pow(4, subdivisions)));
+        // Closed surface: V - E + F = 2, with E = 3F / 2.
+        const std::size_t faces = mesh.indices.size() / 3;
+        CHECK(mesh.vertices.size() + faces - 3 * faces / 2 == 2);
+        for (const auto& v : mesh.vertices)
+            CHECK(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) == Approx(1).epsilon(1e-6));
+    }
+}

@@ -231,6 +231,8 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             snapshot.stats = measure_frame(sim.params(), sim.state());
             snapshot.wall_seconds = wall();
             copy_fields(sim.state(), snapshot);
+            if (render)
+                copy_neighbour_counts(sim.neighbours(), snapshot);
             for (auto& sink : sinks)
                 sink->write(snapshot);
             ++written;

@@ -157,6 +157,16 @@ class FieldReader {
         return v ? checked_integer(path, *v, min, max) : fallback;
     }
 
+    bool boolean(const std::string& path, bool fallback, const char* doc) {
+        record(path, "true or false", "", fallback ? "true" : "false", doc);
+        const json* v = find(path);
+        if (!v)
+            return fallback;
+        if (!v->is_boolean())
+            fail(path, "expected true or false, got " + describe(*v));
+        return v->get<bool>();
+    }
+
     std::string choice(const std::string& path, const std::string& fallback,
                        const std::vector<std::string>& allowed, const char* doc) {
         record(path, "string", "", fallback,
@@ -522,6 +532,10 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.render.spheres = r.choice("render.spheres", d.render.spheres, {"impostor", "mesh"},
                                 "How spheres are drawn: ray-cast impostors (fast) or the seed's "
                                 "instanced meshes.");
+    s.render.cull_buried =
+        r.boolean("render.cull_buried", d.render.cull_buried,
+                  "3D: skip particles buried under two full layers of fluid (a camera outside "
+                  "the fluid cannot see them); false draws every particle.");
     s.render.backend = r.choice("render.backend", d.render.backend, {"auto", "egl", "osmesa"},
                                 "Headless GL context.");
     s.render.camera.position = r.optional_vector(
@@ -750,6 +764,7 @@ json to_json(const Scene& s) {
           {"colour_map", s.render.colour_map},
           {"range", s.render.range ? json(*s.render.range) : json()},
           {"spheres", s.render.spheres},
+          {"cull_buried", s.render.cull_buried},
           {"backend", s.render.backend},
           {"camera",
            {{"position", optional_vec(s.render.camera.position)},

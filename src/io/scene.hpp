@@ -65,6 +65,7 @@ struct Scene {
         std::string colour_map = "auto";    // auto | viridis | turbo | diverging
         std::optional<std::array<double, 2>> range; // field values at the map's ends
         std::string spheres = "impostor";   // impostor | mesh
+        bool cull_buried = true;            // 3D: skip particles no camera can see
         std::string backend = "auto";       // auto | egl | osmesa
         struct Camera {
             std::optional<Vec3> position; // m; default frames the domain

@@ -75,6 +75,18 @@ struct OverlayVertex {
 
 } // namespace
 
+int full_lattice_neighbours(double h, double spacing) {
+    const int reach = int(std::ceil(h / spacing));
+    int count = 0;
+    for (int i = -reach; i <= reach; ++i)
+        for (int j = -reach; j <= reach; ++j)
+            for (int k = -reach; k <= reach; ++k) {
+                const double d = spacing * std::sqrt(double(i * i + j * j + k * k));
+                count += d > 0 && d < h;
+            }
+    return count;
+}
+
 RenderSettings make_render_settings(const Scene& scene, const Derived& derived) {
     RenderSettings r;
     r.width = scene.render.size[0];
@@ -135,7 +147,8 @@ RenderSettings make_render_settings(const Scene& scene, const Derived& derived) 
         const double distance = 0.85 * radius / std::sin(glm::radians(0.5 * r.fov));
         r.camera_position = r.camera_target + distance * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
     }
-    (void)derived;
+    if (scene.dimension == 3 && scene.render.cull_buried)
+        r.buried_neighbour_count = full_lattice_neighbours(derived.h, scene.fluid.spacing);
     return r;
 }
 
@@ -275,9 +288,13 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // Positions relative to the domain centre: floats stay exact far from the origin.
     const glm::dvec3 origin = 0.5 * (s.domain_min + s.domain_max);
     const int dim = frame.dimension;
-    const std::size_t n = frame.size();
-    g.instances.resize(n * 4);
-    for (std::size_t i = 0; i < n; ++i) {
+    const bool cull = s.dimension == 3 && s.buried_neighbour_count > 0 &&
+                      frame.neighbour_count.size() == frame.size();
+    g.instances.resize(frame.size() * 4);
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+        if (cull && frame.neighbour_count[i] >= s.buried_neighbour_count)
+            continue;
         double scalar = 0;
         if (s.field == "velocity") {
             double v2 = 0;
@@ -290,9 +307,11 @@ Image FrameRenderer::render(const Snapshot& frame) {
             scalar = frame.pressure[i];
         }
         for (int a = 0; a < 3; ++a)
-            g.instances[i * 4 + a] = a < dim ? float(frame.position[i * dim + a] - origin[a]) : 0.f;
-        g.instances[i * 4 + 3] = float(scalar);
+            g.instances[n * 4 + a] = a < dim ? float(frame.position[i * dim + a] - origin[a]) : 0.f;
+        g.instances[n * 4 + 3] = float(scalar);
+        ++n;
     }
+    drawn_ = n;
 
     // Cameras: 2D looks at the plane with the domain fitted left of the colour
     // bar; 3D uses the scene's perspective camera.

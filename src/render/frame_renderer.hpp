@@ -30,7 +30,14 @@ struct RenderSettings {
     glm::dvec3 camera_position{0}, camera_target{0}; // 3D
     double fov = 40;                                  // degrees, vertical
     int samples = 4;                                  // multisampling
+    // 3D: particles with at least this many neighbours are buried under two
+    // full layers of fluid and are not drawn (0: draw all).
+    int buried_neighbour_count = 0;
 };
+
+// Neighbours closer than h of a particle inside a full 3D lattice. A particle
+// with that many has two complete layers of fluid around it on every side.
+int full_lattice_neighbours(double h, double spacing);
 
 // Settings from the scene's render section; ranges the scene leaves open come
 // from the scene's physics, so colours mean the same in every frame.
@@ -51,6 +58,8 @@ class FrameRenderer {
 
     Image render(const Snapshot& frame);
     const FrameTimings& last_timings() const { return timings_; }
+    // Particles drawn in the last frame (buried ones are skipped).
+    std::size_t last_drawn() const { return drawn_; }
     const RenderSettings& settings() const { return settings_; }
 
   private:
@@ -58,6 +67,7 @@ class FrameRenderer {
     RenderSettings settings_;
     std::unique_ptr<Gl> gl_;
     FrameTimings timings_;
+    std::size_t drawn_ = 0;
 };
 
 } // namespace sph

@@ -30,6 +30,8 @@ class Simulation {
     State<D>& state() { return state_; }
     const Solver<D>& solver() const { return *solver_; }
     const NeighbourSearch<D>& search() const { return *search_; }
+    // Neighbours as the last step or update_fields() found them.
+    const NeighbourList& neighbours() const { return neighbours_; }
     const EffectList<D>& effects() const { return effects_; }
     Real time() const { return time_; }
     std::uint64_t steps() const { return steps_; }

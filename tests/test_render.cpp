@@ -4,6 +4,10 @@
 // right way up. Set SPHCLIP_UPDATE_GOLDEN=1 to rewrite the golden images
 // (then look at them before committing).
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <filesystem>
 
 #include <catch2/catch.hpp>
@@ -172,4 +176,86 @@ TEST_CASE("icospheres are closed unit spheres", "[render]") {
         for (const auto& v : mesh.vertices)
             CHECK(std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) == Approx(1).epsilon(1e-6));
     }
+}
+
+namespace {
+
+// Runs the program through the shell; returns its exit code.
+int run_program(const std::string& arguments, const fs::path& log) {
+    const std::string command = "OMP_WAIT_POLICY=passive " + std::string(SPHCLIP_EXE) + " " +
+                                arguments + " > '" + log.string() + "' 2>&1";
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+struct TempDir {
+    fs::path path = fs::temp_directory_path() /
+                    ("sphclip_render_test_" + std::to_string(::getpid()) + "_" +
+                     std::to_string(std::rand()));
+    TempDir() { fs::create_directories(path); }
+    ~TempDir() { fs::remove_all(path); }
+};
+
+const char* tiny_clip = R"({
+    "domain": {"min": [0, 0], "max": [0.1, 0.06]},
+    "fluid": {"spacing": 0.004, "blocks": [{"min": [0, 0], "max": [0.04, 0.04]}]},
+    "duration": 0.1, "fps": 20,
+    "render": {"size": [161, 91]}
+})";
+
+} // namespace
+
+TEST_CASE("run writes a PNG per frame and an MP4, and records the GL context", "[render][cli]") {
+    TempDir tmp;
+    {
+        std::FILE* f = std::fopen((tmp.path / "tiny.json").c_str(), "w");
+        std::fputs(tiny_clip, f);
+        std::fclose(f);
+    }
+    const fs::path out = tmp.path / "out";
+    REQUIRE(run_program("run '" + (tmp.path / "tiny.json").string() + "' --quiet --out '" +
+                            out.string() + "'",
+                        tmp.path / "log") == 0);
+    // 0.1 s at 20 fps: frames 0..2; odd image sizes are fine.
+    for (int k = 0; k < 3; ++k) {
+        const fs::path png = out / "frames" / ("frame_0000" + std::to_string(k) + ".png");
+        REQUIRE(fs::exists(png));
+        const Image image = read_png(png);
+        CHECK(image.width == 161);
+        CHECK(image.height == 91);
+    }
+    CHECK_FALSE(fs::exists(out / "frames" / "frame_00003.png"));
+    CHECK(fs::exists(out / "clip.mp4"));
+    CHECK(fs::file_size(out / "clip.mp4") > 1000);
+    CHECK_FALSE(fs::exists(out / "clip.mp4.partial"));
+    std::ifstream in(out / "run.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(json.find("\"backend\": \"egl\"") != std::string::npos);
+    CHECK(json.find("\"render_s\"") != std::string::npos);
+    CHECK(json.find("\"readback_s\"") != std::string::npos);
+    CHECK(json.find("\"encode_s\"") != std::string::npos);
+    CHECK(json.find("\"simulate_s\"") != std::string::npos);
+}
+
+TEST_CASE("no GL context: exit 4, nothing written; data-only runs need no GL", "[render][cli]") {
+    TempDir tmp;
+    const fs::path out = tmp.path / "out";
+    // An EGL vendor list that names nothing: libglvnd finds no EGL driver.
+    const std::string no_egl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent ";
+    const std::string run = "run --duration 0.01 --quiet --out '" + out.string() + "'";
+    const int status =
+        std::system((no_egl + SPHCLIP_EXE + " " + run + " --backend egl > '" +
+                     (tmp.path / "log").string() + "' 2>&1")
+                        .c_str());
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 4);
+    std::ifstream in(tmp.path / "log");
+    const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(log.find("EGL") != std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+    const int data_only = std::system((no_egl + SPHCLIP_EXE + " " + run +
+                                       " --backend egl --no-png --no-mp4 > /dev/null 2>&1")
+                                          .c_str());
+    CHECK(WEXITSTATUS(data_only) == 0);
+    CHECK(fs::exists(out / "stats.csv"));
 }

@@ -90,20 +90,18 @@ struct RunRecord {
 };
 
 template <int D>
-int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& options) {
+int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& options,
+             std::unique_ptr<GlContext> gl_context) {
     const Derived derived = derive(scene);
     Simulation<D> sim = make_simulation<D>(scene, derived);
     const std::uint64_t frames =
         static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1;
 
-    // The GL context first: when none can be made, nothing has been written.
     RenderSink* render = nullptr;
     std::unique_ptr<RenderSink> render_sink;
-    if (options.png || options.mp4) {
-        const std::string backend =
-            options.backend.empty() ? scene.render.backend : options.backend;
+    if (gl_context) {
         render_sink = std::make_unique<RenderSink>(
-            make_gl_context(backend), make_render_settings(scene, derived),
+            std::move(gl_context), make_render_settings(scene, derived),
             options.png ? folder / "frames" : fs::path(),
             options.mp4 ? folder / "clip.mp4" : fs::path(), scene.fps, Mp4Options{});
         render = render_sink.get();
@@ -268,12 +266,17 @@ int run_command(const RunOptions& options) {
     const Scene scene = options.scene ? load_scene(*options.scene, options.overrides)
                                       : default_scene(options.overrides);
     const fs::path folder = options.out ? *options.out : fs::path("out") / scene.name;
+    // The GL context before any output: when none can be made, nothing is written.
+    std::unique_ptr<GlContext> gl_context;
+    if (options.png || options.mp4)
+        gl_context =
+            make_gl_context(options.backend.empty() ? scene.render.backend : options.backend);
     prepare_output_folder(folder);
     remove_earlier_frames(folder);
     if (options.threads > 0)
         omp_set_num_threads(options.threads);
-    return scene.dimension == 2 ? run_clip<2>(scene, folder, options)
-                                : run_clip<3>(scene, folder, options);
+    return scene.dimension == 2 ? run_clip<2>(scene, folder, options, std::move(gl_context))
+                                : run_clip<3>(scene, folder, options, std::move(gl_context));
 }
 
 } // namespace sph

@@ -64,12 +64,13 @@ void prepare_output_folder(const fs::path& folder) {
 // Frames of an earlier run in the same folder would mix with this run's.
 void remove_earlier_frames(const fs::path& folder) {
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(folder / "particles", ec)) {
-        const auto name = entry.path().filename().string();
-        const auto ext = entry.path().extension().string();
-        if (name.starts_with("frame_") && (ext == ".csv" || ext == ".vtp"))
-            fs::remove(entry.path(), ec);
-    }
+    for (const char* sub : {"particles", "frames"})
+        for (const auto& entry : fs::directory_iterator(folder / sub, ec)) {
+            const auto name = entry.path().filename().string();
+            const auto ext = entry.path().extension().string();
+            if (name.starts_with("frame_") && (ext == ".csv" || ext == ".vtp" || ext == ".png"))
+                fs::remove(entry.path(), ec);
+        }
     fs::remove(folder / "particles.pvd", ec);
 }
 

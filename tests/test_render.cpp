@@ -259,3 +259,25 @@ TEST_CASE("no GL context: exit 4, nothing written; data-only runs need no GL", "
     CHECK(WEXITSTATUS(data_only) == 0);
     CHECK(fs::exists(out / "stats.csv"));
 }
+
+TEST_CASE("an interrupted run still finalises its video", "[render][cli]") {
+    TempDir tmp;
+    {
+        std::FILE* f = std::fopen((tmp.path / "tiny.json").c_str(), "w");
+        std::fputs(tiny_clip, f);
+        std::fclose(f);
+    }
+    const fs::path out = tmp.path / "out";
+    // A long clip, stopped once its second frame is on disk.
+    const std::string command =
+        "OMP_WAIT_POLICY=passive " + std::string(SPHCLIP_EXE) + " run '" +
+        (tmp.path / "tiny.json").string() + "' --duration 1000 --quiet --out '" + out.string() +
+        "' > /dev/null 2>&1 & pid=$!; while [ ! -e '" + (out / "frames" / "frame_00002.png").string() +
+        "' ]; do sleep 0.05; done; kill -TERM $pid; wait $pid";
+    const int status = std::system(command.c_str());
+    REQUIRE(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 130);
+    CHECK(fs::exists(out / "clip.mp4"));
+    CHECK_FALSE(fs::exists(out / "clip.mp4.partial"));
+    CHECK(fs::file_size(out / "clip.mp4") > 1000);
+}

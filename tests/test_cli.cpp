@@ -534,3 +534,173 @@ TEST_CASE("SIGTERM stops a run between steps and keeps its frames", "[cli]") {
     CHECK(stats.rows.size() < 10001);
     CHECK(run.at("frames").get<std::size_t>() == stats.rows.size());
 }
+
+// `sphclip compare`: images made with the library, the verdict read from the
+// exit code and the metrics line.
+
+#include "io/png_io.hpp"
+
+namespace {
+
+// 10 x 10 opaque pixels in a smooth gradient, clear of 0 and 255.
+sph::Image compare_gradient() {
+    sph::Image image(10, 10);
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 10; ++x) {
+            std::uint8_t* p = image.pixel(x, y);
+            p[0] = std::uint8_t(20 + 20 * x);
+            p[1] = std::uint8_t(20 + 20 * y);
+            p[2] = 120;
+            p[3] = 255;
+        }
+    return image;
+}
+
+// Every channel moved by at most 2, by 0.8 on average.
+sph::Image with_small_noise(sph::Image image) {
+    constexpr int cycle[10] = {0, 1, -1, 2, -2, 0, 1, -1, 0, 0};
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+        for (std::size_t c = 0; c < 3; ++c)
+            image.rgba[i + c] = std::uint8_t(image.rgba[i + c] + cycle[k++ % 10]);
+    return image;
+}
+
+fs::path write_png_file(const TempFolder& tmp, const std::string& name, const sph::Image& image) {
+    sph::write_png(tmp / name, image);
+    return tmp / name;
+}
+
+} // namespace
+
+TEST_CASE("compare exits 0 for identical images and prints one line of metrics", "[cli]") {
+    TempFolder tmp;
+    const fs::path a = write_png_file(tmp, "a.png", compare_gradient());
+    const fs::path b = write_png_file(tmp, "b.png", compare_gradient());
+    const auto result = sphclip(tmp, {"compare", a.string(), b.string()});
+    CHECK(result.exit_code == 0);
+    CHECK(result.output == "mean_difference=0.0000 max_difference=0 different_percent=0.0000 "
+                           "psnr_db=inf match=yes\n");
+}
+
+TEST_CASE("compare exits 1 when one pixel differs too much, and says why", "[cli]") {
+    TempFolder tmp;
+    // One pixel of 100 (1 %) off by 60 in red: mean difference 60 / 300.
+    sph::Image changed = compare_gradient();
+    changed.pixel(3, 7)[0] += 60;
+    const fs::path ref = write_png_file(tmp, "ref.png", compare_gradient());
+    const fs::path test = write_png_file(tmp, "test.png", changed);
+
+    const auto result = sphclip(tmp, {"compare", ref.string(), test.string()});
+    INFO(result.output);
+    CHECK(result.exit_code == 1);
+    CHECK(contains(result.output, "mean_difference=0.2000 max_difference=60 "
+                                  "different_percent=1.0000 psnr_db="));
+    CHECK(contains(result.output, " match=no\n"));
+    CHECK(contains(result.output, "differ"));
+    CHECK(contains(result.output, "--max-different"));
+    CHECK_FALSE(contains(result.output, "--tolerance")); // the mean is within it
+
+    // Allowing more differing pixels, or a larger difference per pixel, passes.
+    for (const std::vector<std::string>& flags :
+         {std::vector<std::string>{"--max-different", "2"}, {"--threshold", "60"}}) {
+        std::vector<std::string> args{"compare", ref.string(), test.string()};
+        args.insert(args.end(), flags.begin(), flags.end());
+        const auto relaxed = sphclip(tmp, args);
+        INFO(relaxed.output);
+        CHECK(relaxed.exit_code == 0);
+        CHECK(contains(relaxed.output, " match=yes\n"));
+    }
+}
+
+TEST_CASE("compare's --tolerance decides on small noise everywhere", "[cli]") {
+    TempFolder tmp;
+    const fs::path ref = write_png_file(tmp, "ref.png", compare_gradient());
+    const fs::path test = write_png_file(tmp, "test.png", with_small_noise(compare_gradient()));
+
+    const auto loose = sphclip(tmp, {"compare", ref.string(), test.string()});
+    INFO(loose.output);
+    CHECK(loose.exit_code == 0);
+    CHECK(contains(loose.output, "mean_difference=0.8000 max_difference=2 "
+                                 "different_percent=0.0000 psnr_db="));
+
+    const auto tight = sphclip(tmp, {"compare", ref.string(), test.string(), "--tolerance", "0.5"});
+    INFO(tight.output);
+    CHECK(tight.exit_code == 1);
+    CHECK(contains(tight.output, "match=no"));
+    CHECK(contains(tight.output, "--tolerance"));
+}
+
+TEST_CASE("compare --diff writes a difference image of the same size, match or not", "[cli]") {
+    TempFolder tmp;
+    sph::Image changed = compare_gradient();
+    changed.pixel(3, 7)[0] += 60;
+    const fs::path ref = write_png_file(tmp, "ref.png", compare_gradient());
+    const fs::path test = write_png_file(tmp, "test.png", changed);
+
+    for (const bool relaxed : {false, true}) {
+        INFO((relaxed ? "matching" : "differing"));
+        const fs::path diff = tmp / (relaxed ? "diff_match.png" : "diff.png");
+        std::vector<std::string> args{"compare", ref.string(), test.string(), "--diff",
+                                      diff.string()};
+        if (relaxed)
+            args.insert(args.end(), {"--max-different", "5"});
+        const auto result = sphclip(tmp, args);
+        INFO(result.output);
+        CHECK(result.exit_code == (relaxed ? 0 : 1));
+        const sph::Image image = sph::read_png(diff);
+        CHECK(image.width == 10);
+        CHECK(image.height == 10);
+        // The changed pixel is marked red; its neighbours are grey.
+        CHECK(image.pixel(3, 7)[0] > 2 * image.pixel(3, 7)[1] + 100);
+        CHECK(image.pixel(4, 7)[0] == image.pixel(4, 7)[1]);
+    }
+}
+
+TEST_CASE("compare exits 2 on bad input, naming the file or the flag", "[cli]") {
+    TempFolder tmp;
+    const fs::path ref = write_png_file(tmp, "ref.png", compare_gradient());
+
+    auto expect_refused = [&](const std::vector<std::string>& args,
+                              const std::vector<std::string>& words) {
+        std::vector<std::string> full{"compare"};
+        full.insert(full.end(), args.begin(), args.end());
+        const auto result = sphclip(tmp, full);
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        for (const auto& word : words)
+            CHECK(contains(result.output, word));
+        CHECK_FALSE(contains(result.output, "match=")); // no verdict
+    };
+
+    SECTION("a missing image") {
+        const fs::path missing = tmp / "missing.png";
+        expect_refused({ref.string(), missing.string()},
+                       {missing.string(), "No such file or directory"});
+        expect_refused({missing.string(), ref.string()}, {missing.string()});
+    }
+    SECTION("a file that is not a PNG") {
+        write_text(tmp / "text.png", "not an image\n");
+        expect_refused({ref.string(), (tmp / "text.png").string()},
+                       {(tmp / "text.png").string(), "cannot read the PNG"});
+    }
+    SECTION("images of different sizes") {
+        const fs::path wide = write_png_file(tmp, "wide.png", sph::Image(12, 10));
+        expect_refused({ref.string(), wide.string()}, {wide.string(), "12x10", "10x10"});
+    }
+    SECTION("a missing argument") {
+        expect_refused({ref.string()}, {"test"});
+    }
+    SECTION("thresholds out of range or not numbers") {
+        expect_refused({ref.string(), ref.string(), "--threshold", "-1"}, {"--threshold"});
+        expect_refused({ref.string(), ref.string(), "--tolerance", "nan"}, {"--tolerance"});
+        expect_refused({ref.string(), ref.string(), "--tolerance", "abc"}, {"--tolerance"});
+        expect_refused({ref.string(), ref.string(), "--max-different", "101"}, {"--max-different"});
+    }
+    SECTION("a --diff in a missing folder") {
+        const fs::path diff = tmp / "no_such_folder" / "diff.png";
+        expect_refused({ref.string(), ref.string(), "--diff", diff.string()},
+                       {"--diff", diff.string()});
+        CHECK_FALSE(fs::exists(diff.parent_path()));
+    }
+}

@@ -1,0 +1,35 @@
+#pragma once
+// Compares a rendered image with a reference one, for checks in CI
+// (`sphclip compare`). Only the colour counts: alpha is ignored, since
+// rendered frames are opaque and a transparent pixel's colour is arbitrary.
+
+#include "io/image.hpp"
+
+namespace sph {
+
+struct CompareOptions {
+    double max_mean_difference = 1.0;   // mean absolute difference over RGB channels, 0-255 scale
+    double pixel_threshold = 32;        // a pixel differs when any RGB channel differs by more
+    double max_different_percent = 0.5; // share of differing pixels allowed, percent
+};
+
+struct CompareResult {
+    double mean_difference = 0;   // mean |test - reference| over pixels and RGB channels, 0-255
+    double max_difference = 0;    // largest |test - reference| of any channel, 0-255
+    double different_percent = 0; // pixels beyond pixel_threshold, percent of all pixels
+    double psnr_db = 0; // peak signal-to-noise ratio over RGB, dB; infinity when identical
+    bool match = false; // mean_difference <= max_mean_difference and
+                        // different_percent <= max_different_percent
+};
+
+// Throws std::invalid_argument when the sizes differ.
+CompareResult compare_images(const Image& reference, const Image& test,
+                             const CompareOptions& options);
+
+// The differences made visible, the size of the inputs: the reference as
+// faint grey where the pixels agree, differences up to the threshold in blue,
+// pixels beyond the threshold in red, brighter the larger the difference.
+// Opaque. Throws std::invalid_argument when the sizes differ.
+Image difference_image(const Image& reference, const Image& test, const CompareOptions& options);
+
+} // namespace sph

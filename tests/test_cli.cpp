@@ -18,6 +18,8 @@
 #include <unistd.h>
 #include <vector>
 
+#include "io/png_io.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -519,7 +521,8 @@ TEST_CASE("SIGTERM stops a run between steps and keeps its frames", "[cli]") {
     const fs::path log = tmp / "sphclip.log";
     const std::string command = fmt::format(
         "OMP_WAIT_POLICY=passive {} run --out {} --duration 100 --fps 100 --quiet > {} 2>&1 & "
-        "pid=$!; while [ ! -s {} ]; do sleep 0.1; done; sleep 1; kill -TERM $pid; wait $pid",
+        "pid=$!; n=0; while [ ! -s {} ] && [ $n -lt 300 ]; do sleep 0.1; n=$((n+1)); done; "
+        "sleep 1; kill -TERM $pid; wait $pid",
         shell_quote(SPHCLIP_EXE), shell_quote(out.string()), shell_quote(log.string()),
         shell_quote((out / "stats.csv").string()));
     const int status = std::system(("bash -c " + shell_quote(command)).c_str());
@@ -538,7 +541,6 @@ TEST_CASE("SIGTERM stops a run between steps and keeps its frames", "[cli]") {
 // `sphclip compare`: images made with the library, the verdict read from the
 // exit code and the metrics line.
 
-#include "io/png_io.hpp"
 
 namespace {
 

@@ -8,6 +8,7 @@
 #include "io/scene_setup.hpp"
 #include "io/stats_csv.hpp"
 #include "render/render_sink.hpp"
+#include "sph/surface.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -230,8 +231,8 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             snapshot.stats = measure_frame(sim.params(), sim.state());
             snapshot.wall_seconds = wall();
             copy_fields(sim.state(), snapshot);
-            if (render)
-                copy_neighbour_counts(sim.neighbours(), snapshot);
+            if (render && D == 3 && scene.render.cull_buried)
+                mark_buried(sim.state(), sim.neighbours(), scene.fluid.spacing, snapshot.buried);
             for (auto& sink : sinks)
                 sink->write(snapshot);
             ++written;

@@ -75,18 +75,6 @@ struct OverlayVertex {
 
 } // namespace
 
-int full_lattice_neighbours(double h, double spacing) {
-    const int reach = int(std::ceil(h / spacing));
-    int count = 0;
-    for (int i = -reach; i <= reach; ++i)
-        for (int j = -reach; j <= reach; ++j)
-            for (int k = -reach; k <= reach; ++k) {
-                const double d = spacing * std::sqrt(double(i * i + j * j + k * k));
-                count += d > 0 && d < h;
-            }
-    return count;
-}
-
 RenderSettings make_render_settings(const Scene& scene, const Derived& derived) {
     RenderSettings r;
     r.width = scene.render.size[0];
@@ -147,8 +135,8 @@ RenderSettings make_render_settings(const Scene& scene, const Derived& derived) 
         const double distance = 0.85 * radius / std::sin(glm::radians(0.5 * r.fov));
         r.camera_position = r.camera_target + distance * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
     }
-    if (scene.dimension == 3 && scene.render.cull_buried)
-        r.buried_neighbour_count = full_lattice_neighbours(derived.h, scene.fluid.spacing);
+    r.cull_buried = scene.dimension == 3 && scene.render.cull_buried;
+    (void)derived;
     return r;
 }
 
@@ -288,12 +276,11 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // Positions relative to the domain centre: floats stay exact far from the origin.
     const glm::dvec3 origin = 0.5 * (s.domain_min + s.domain_max);
     const int dim = frame.dimension;
-    const bool cull = s.dimension == 3 && s.buried_neighbour_count > 0 &&
-                      frame.neighbour_count.size() == frame.size();
+    const bool cull = s.cull_buried && frame.buried.size() == frame.size();
     g.instances.resize(frame.size() * 4);
     std::size_t n = 0;
     for (std::size_t i = 0; i < frame.size(); ++i) {
-        if (cull && frame.neighbour_count[i] >= s.buried_neighbour_count)
+        if (cull && frame.buried[i])
             continue;
         double scalar = 0;
         if (s.field == "velocity") {

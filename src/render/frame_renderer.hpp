@@ -30,14 +30,9 @@ struct RenderSettings {
     glm::dvec3 camera_position{0}, camera_target{0}; // 3D
     double fov = 40;                                  // degrees, vertical
     int samples = 4;                                  // multisampling
-    // 3D: particles with at least this many neighbours are buried under two
-    // full layers of fluid and are not drawn (0: draw all).
-    int buried_neighbour_count = 0;
+    // Skip particles the snapshot marks as buried deep in the fluid (3D).
+    bool cull_buried = false;
 };
-
-// Neighbours closer than h of a particle inside a full 3D lattice. A particle
-// with that many has two complete layers of fluid around it on every side.
-int full_lattice_neighbours(double h, double spacing);
 
 // Settings from the scene's render section; ranges the scene leaves open come
 // from the scene's physics, so colours mean the same in every frame.

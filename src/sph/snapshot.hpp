@@ -4,7 +4,6 @@
 // The renderer and the writers never touch State or the solver.
 
 #include "sph/diagnostics.hpp"
-#include "sph/neighbours/neighbour_list.hpp"
 #include "sph/state.hpp"
 
 #include <algorithm>
@@ -24,9 +23,9 @@ struct Snapshot {
     // Particle fields, `dimension` values per particle for vectors.
     std::vector<Real> position, velocity, density, pressure;
     std::vector<std::uint32_t> id;
-    // Neighbours within h: lets the renderer skip particles buried deep
-    // inside the fluid, which no camera outside it can see. May be empty.
-    std::vector<std::uint16_t> neighbour_count;
+    // 1 for particles deep inside the fluid (sph/surface.hpp), which a camera
+    // outside it cannot see; empty when not computed.
+    std::vector<std::uint8_t> buried;
 
     std::size_t size() const { return density.size(); }
 };
@@ -45,14 +44,6 @@ void copy_fields(const State<D>& state, Snapshot& snapshot) {
     snapshot.density = state.density;
     snapshot.pressure = state.pressure;
     snapshot.id = state.id;
-}
-
-inline void copy_neighbour_counts(const NeighbourList& neighbours, Snapshot& snapshot) {
-    const std::size_t n = neighbours.particle_count();
-    snapshot.neighbour_count.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-        snapshot.neighbour_count[i] =
-            static_cast<std::uint16_t>(std::min<std::size_t>(neighbours.of(i).size(), 65535));
 }
 
 } // namespace sph

@@ -17,6 +17,7 @@
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
+#include "sph/surface.hpp"
 
 using namespace sph;
 
@@ -96,14 +97,15 @@ int main(int argc, char** argv) {
                     // As in a run: neighbour counts let buried particles be skipped
                     // (for the fluid block; scattered particles are a gas, all visible).
                     const double h = 2.2 * spacing;
-                    settings.buried_neighbour_count = full_lattice_neighbours(h, spacing);
-                    std::vector<Vec<3>> x(n);
+                    settings.cull_buried = block;
+                    State<3> state;
+                    state.resize(n);
                     for (std::size_t i = 0; i < n; ++i)
-                        x[i] = {s.position[3 * i], s.position[3 * i + 1], s.position[3 * i + 2]};
+                        state.position[i] = {s.position[3 * i], s.position[3 * i + 1],
+                                             s.position[3 * i + 2]};
                     NeighbourList list;
-                    SpatialHash<3>().find(x, h, list);
-                    if (block)
-                        copy_neighbour_counts(list, s);
+                    SpatialHash<3>().find(state.position, h, list);
+                    mark_buried(state, list, spacing, s.buried);
                     FrameRenderer renderer(settings);
                     renderer.render(s); // warm-up: shader compilation, buffers
                     const double ms = median_ms(renderer, s, repeat);

@@ -105,7 +105,8 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
         render_sink = std::make_unique<RenderSink>(
             std::move(gl_context), make_render_settings(scene, derived),
             options.png ? folder / "frames" : fs::path(),
-            options.mp4 ? folder / "clip.mp4" : fs::path(), scene.fps, Mp4Options{});
+            options.mp4 ? folder / "clip.mp4" : fs::path(), scene.fps,
+            Mp4Options{scene.render.video_quality, scene.render.video_preset, 0});
         render = render_sink.get();
     }
 
@@ -249,6 +250,17 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
                    "material.viscosity.\n",
                    e.what(), written, folder.string());
         return exit_non_finite;
+    } catch (const std::exception& e) {
+        // Disk full, encoder failure: finalise what can be, record why, exit 1.
+        progress.done();
+        try {
+            finish_sinks();
+        } catch (const std::exception&) {
+            // the first error is the one to report
+        }
+        record_timings();
+        record.save("failed", written, sim.steps(), sim.time(), wall(), e.what());
+        throw;
     }
     progress.done();
     finish_sinks();

@@ -536,6 +536,14 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         r.boolean("render.cull_buried", d.render.cull_buried,
                   "3D: skip particles buried under two full layers of fluid (a camera outside "
                   "the fluid cannot see them); false draws every particle.");
+    s.render.video_quality =
+        r.integer("render.video_quality", d.render.video_quality, 0, 51,
+                  "MP4 constant quality (x264 CRF): 0 lossless, 18-23 visually good, 51 worst.");
+    s.render.video_preset = r.choice(
+        "render.video_preset", d.render.video_preset,
+        {"ultrafast", "superfast", "veryfast", "faster", "fast", "medium", "slow", "slower",
+         "veryslow"},
+        "MP4 encoder speed: faster presets make larger files at the same quality.");
     s.render.backend = r.choice("render.backend", d.render.backend, {"auto", "egl", "osmesa"},
                                 "Headless GL context.");
     s.render.camera.position = r.optional_vector(
@@ -765,6 +773,8 @@ json to_json(const Scene& s) {
           {"range", s.render.range ? json(*s.render.range) : json()},
           {"spheres", s.render.spheres},
           {"cull_buried", s.render.cull_buried},
+          {"video_quality", s.render.video_quality},
+          {"video_preset", s.render.video_preset},
           {"backend", s.render.backend},
           {"camera",
            {{"position", optional_vec(s.render.camera.position)},

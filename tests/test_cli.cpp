@@ -1,7 +1,9 @@
 // End to end through the real program (src/cli/): outputs of a run, exit
 // codes, messages, and that bad input leaves nothing behind.
 
+#include "io/png_io.hpp"
 #include "io/scene.hpp"
+#include "support/temp_folder.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -18,47 +20,13 @@
 #include <unistd.h>
 #include <vector>
 
-#include "io/png_io.hpp"
-
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-// A fresh folder under the system's temporary folder, removed with everything
-// in it when the test ends.
-class TempFolder {
-  public:
-    TempFolder() {
-        static int count = 0;
-        path_ = fs::temp_directory_path() / fmt::format("sphclip_test_{}_{}", ::getpid(), count++);
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempFolder() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempFolder(const TempFolder&) = delete;
-    TempFolder& operator=(const TempFolder&) = delete;
-
-    const fs::path& path() const { return path_; }
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-  private:
-    fs::path path_;
-};
-
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-}
+using sph::test::read_text;
+using sph::test::TempFolder;
+using sph::test::write_text;
 
 std::vector<std::string> split(const std::string& text, char separator) {
     std::vector<std::string> parts;
@@ -540,7 +508,6 @@ TEST_CASE("SIGTERM stops a run between steps and keeps its frames", "[cli]") {
 
 // `sphclip compare`: images made with the library, the verdict read from the
 // exit code and the metrics line.
-
 
 namespace {
 

@@ -2,6 +2,7 @@
 // with libavformat/libavcodec, as a player would.
 
 #include "io/mp4_writer.hpp"
+#include "support/temp_folder.hpp"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -32,37 +33,7 @@ namespace fs = std::filesystem;
 using sph::Image;
 using sph::Mp4Options;
 using sph::Mp4Writer;
-
-// A fresh folder under the system's temporary folder, removed with everything
-// in it when the test ends.
-class TempFolder {
-  public:
-    TempFolder() {
-        static int count = 0;
-        path_ =
-            fs::temp_directory_path() / fmt::format("sphclip_mp4_test_{}_{}", ::getpid(), count++);
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempFolder() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempFolder(const TempFolder&) = delete;
-    TempFolder& operator=(const TempFolder&) = delete;
-
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-    // Names of everything in the folder, to catch a stray ".partial".
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(path_))
-            names.push_back(entry.path().filename().string());
-        return names;
-    }
-
-  private:
-    fs::path path_;
-};
+using sph::test::TempFolder;
 
 // Makes `folder` the current folder until it goes out of scope.
 class WorkingFolder {

@@ -2,6 +2,7 @@
 // writes, clear errors, and the writer thread.
 
 #include "io/png_io.hpp"
+#include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -17,40 +18,9 @@
 namespace {
 
 namespace fs = std::filesystem;
-
-// A fresh folder under the system's temporary folder, removed when the test ends.
-class ScratchFolder {
-  public:
-    ScratchFolder() {
-        static int count = 0;
-        path_ = fs::temp_directory_path() / fmt::format("sphclip_png_{}_{}", ::getpid(), count++);
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~ScratchFolder() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    ScratchFolder(const ScratchFolder&) = delete;
-    ScratchFolder& operator=(const ScratchFolder&) = delete;
-
-    const fs::path& path() const { return path_; }
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-  private:
-    fs::path path_;
-};
-
-std::string read_bytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream bytes;
-    bytes << in.rdbuf();
-    return bytes.str();
-}
-
-void write_bytes(const fs::path& path, const std::string& bytes) {
-    std::ofstream(path, std::ios::binary) << bytes;
-}
+using sph::test::read_text;
+using sph::test::TempFolder;
+using sph::test::write_text;
 
 // Every byte different from its neighbours, so that a swapped channel, a
 // flipped row or an off-by-one stride shows. `seed` makes images distinct.
@@ -69,7 +39,7 @@ sph::Image pattern(int width, int height, bool opaque, int seed = 0) {
 
 // The PNG colour type from the IHDR chunk: 2 is RGB, 6 is RGBA.
 int colour_type(const fs::path& png) {
-    const std::string bytes = read_bytes(png);
+    const std::string bytes = read_text(png);
     REQUIRE(bytes.size() > 25);
     return std::uint8_t(bytes[25]);
 }
@@ -84,7 +54,7 @@ std::vector<fs::path> folder_contents(const fs::path& folder) {
 } // namespace
 
 TEST_CASE("a PNG reads back exactly as written, with and without transparency", "[png]") {
-    ScratchFolder tmp;
+    TempFolder tmp;
     const fs::path path = tmp / "image.png";
     SECTION("varied alpha: written as RGBA") {
         const sph::Image image = pattern(37, 23, false);
@@ -111,7 +81,7 @@ TEST_CASE("a PNG reads back exactly as written, with and without transparency", 
 }
 
 TEST_CASE("odd image sizes round trip, row 0 at the top", "[png]") {
-    ScratchFolder tmp;
+    TempFolder tmp;
     for (const auto& [width, height] : {std::pair{1, 1}, {3, 5}, {5, 3}, {1281, 721}})
         for (const bool opaque : {true, false}) {
             INFO(width << "x" << height << (opaque ? " opaque" : " transparent"));
@@ -126,7 +96,7 @@ TEST_CASE("odd image sizes round trip, row 0 at the top", "[png]") {
 }
 
 TEST_CASE("write_png replaces a file whole and leaves no temporary file", "[png]") {
-    ScratchFolder tmp;
+    TempFolder tmp;
     const fs::path path = tmp / "frame.png";
     sph::write_png(path, pattern(8, 8, true, 1));
     sph::write_png(path, pattern(9, 4, false, 2));
@@ -135,7 +105,7 @@ TEST_CASE("write_png replaces a file whole and leaves no temporary file", "[png]
 }
 
 TEST_CASE("write_png names the path when it cannot write, and refuses empty images", "[png]") {
-    ScratchFolder tmp;
+    TempFolder tmp;
     const fs::path missing = tmp / "no_such_folder" / "frame.png";
     try {
         sph::write_png(missing, pattern(4, 4, true));
@@ -151,7 +121,7 @@ TEST_CASE("write_png names the path when it cannot write, and refuses empty imag
 }
 
 TEST_CASE("read_png throws ImageReadError naming the path and the reason", "[png]") {
-    ScratchFolder tmp;
+    TempFolder tmp;
     auto expect_error = [](const fs::path& path, const std::string& reason) {
         try {
             sph::read_png(path);
@@ -166,17 +136,17 @@ TEST_CASE("read_png throws ImageReadError naming the path and the reason", "[png
         expect_error(tmp / "missing.png", "No such file or directory");
     }
     SECTION("a file that is not a PNG") {
-        write_bytes(tmp / "garbage.png", "this is not an image, only text\n");
+        write_text(tmp / "garbage.png", "this is not an image, only text\n");
         expect_error(tmp / "garbage.png", ""); // stb's reason varies with its version
     }
     SECTION("an empty file") {
-        write_bytes(tmp / "empty.png", "");
+        write_text(tmp / "empty.png", "");
         expect_error(tmp / "empty.png", "");
     }
     SECTION("a PNG cut short") {
         sph::write_png(tmp / "whole.png", pattern(64, 64, false));
-        const std::string whole = read_bytes(tmp / "whole.png");
-        write_bytes(tmp / "cut.png", whole.substr(0, whole.size() / 2));
+        const std::string whole = read_text(tmp / "whole.png");
+        write_text(tmp / "cut.png", whole.substr(0, whole.size() / 2));
         expect_error(tmp / "cut.png", "");
     }
     SECTION("a folder") {
@@ -185,7 +155,7 @@ TEST_CASE("read_png throws ImageReadError naming the path and the reason", "[png
 }
 
 TEST_CASE("PngWriterThread writes every image, in the order submitted", "[png]") {
-    ScratchFolder tmp;
+    TempFolder tmp;
     constexpr int frames = 8;
     {
         sph::PngWriterThread writer(2);
@@ -210,7 +180,7 @@ TEST_CASE("PngWriterThread writes every image, in the order submitted", "[png]")
 }
 
 TEST_CASE("PngWriterThread's destructor writes what is queued", "[png]") {
-    ScratchFolder tmp;
+    TempFolder tmp;
     {
         sph::PngWriterThread writer;
         writer.submit(tmp / "a.png", pattern(40, 30, true, 1));
@@ -221,7 +191,7 @@ TEST_CASE("PngWriterThread's destructor writes what is queued", "[png]") {
 }
 
 TEST_CASE("PngWriterThread reports a failed write and writes nothing after it", "[png]") {
-    ScratchFolder tmp;
+    TempFolder tmp;
     const fs::path bad = tmp / "no_such_folder" / "frame.png";
     SECTION("on finish()") {
         sph::PngWriterThread writer;

@@ -3,15 +3,6 @@
 // tests/golden/, impostors look like the seed's meshes, and images are the
 // right way up. Set SPHCLIP_UPDATE_GOLDEN=1 to rewrite the golden images
 // (then look at them before committing).
-#include <cstdlib>
-#include <fstream>
-#include <iterator>
-#include <sys/wait.h>
-#include <unistd.h>
-#include <filesystem>
-
-#include <catch2/catch.hpp>
-
 #include "io/image_compare.hpp"
 #include "io/png_io.hpp"
 #include "io/scene_setup.hpp"
@@ -19,6 +10,15 @@
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/sphere_geometry.hpp"
+#include "support/temp_folder.hpp"
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace sph;
 namespace fs = std::filesystem;
@@ -155,7 +155,9 @@ TEST_CASE("colour maps run from their low to their high end", "[render]") {
     for (const auto& name : colour_map_names()) {
         const auto table = colour_map_table(name, 256);
         REQUIRE(table.size() == 256);
-        auto luminance = [](const Rgb8& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
+        auto luminance = [](const Rgb8& c) {
+            return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        };
         if (name == "viridis") // sequential: brightness rises throughout
             for (int i = 1; i < 256; ++i)
                 CHECK(luminance(table[i]) >= luminance(table[i - 1]) - 0.5);
@@ -191,14 +193,6 @@ int run_program(const std::string& arguments, const fs::path& log) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-struct TempDir {
-    fs::path path = fs::temp_directory_path() /
-                    ("sphclip_render_test_" + std::to_string(::getpid()) + "_" +
-                     std::to_string(std::rand()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() { fs::remove_all(path); }
-};
-
 const char* tiny_clip = R"({
     "domain": {"min": [0, 0], "max": [0.1, 0.06]},
     "fluid": {"spacing": 0.004, "blocks": [{"min": [0, 0], "max": [0.04, 0.04]}]},
@@ -209,16 +203,12 @@ const char* tiny_clip = R"({
 } // namespace
 
 TEST_CASE("run writes a PNG per frame and an MP4, and records the GL context", "[render][cli]") {
-    TempDir tmp;
-    {
-        std::FILE* f = std::fopen((tmp.path / "tiny.json").c_str(), "w");
-        std::fputs(tiny_clip, f);
-        std::fclose(f);
-    }
-    const fs::path out = tmp.path / "out";
-    REQUIRE(run_program("run '" + (tmp.path / "tiny.json").string() + "' --quiet --out '" +
+    sph::test::TempFolder tmp;
+    sph::test::write_text(tmp / "tiny.json", tiny_clip);
+    const fs::path out = tmp.path() / "out";
+    REQUIRE(run_program("run '" + (tmp.path() / "tiny.json").string() + "' --quiet --out '" +
                             out.string() + "'",
-                        tmp.path / "log") == 0);
+                        tmp.path() / "log") == 0);
     // 0.1 s at 20 fps: frames 0..2; odd image sizes are fine.
     for (int k = 0; k < 3; ++k) {
         const fs::path png = out / "frames" / ("frame_0000" + std::to_string(k) + ".png");
@@ -241,40 +231,35 @@ TEST_CASE("run writes a PNG per frame and an MP4, and records the GL context", "
 }
 
 TEST_CASE("no GL context: exit 4, nothing written; data-only runs need no GL", "[render][cli]") {
-    TempDir tmp;
-    const fs::path out = tmp.path / "out";
+    sph::test::TempFolder tmp;
+    const fs::path out = tmp.path() / "out";
     // An EGL vendor list that names nothing: libglvnd finds no EGL driver.
     const std::string no_egl = "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent ";
     const std::string run = "run --duration 0.01 --quiet --out '" + out.string() + "'";
-    const int status =
-        std::system((no_egl + SPHCLIP_EXE + " " + run + " --backend egl > '" +
-                     (tmp.path / "log").string() + "' 2>&1")
-                        .c_str());
+    const int status = std::system((no_egl + SPHCLIP_EXE + " " + run + " --backend egl > '" +
+                                    (tmp.path() / "log").string() + "' 2>&1")
+                                       .c_str());
     REQUIRE(WIFEXITED(status));
     CHECK(WEXITSTATUS(status) == 4);
-    std::ifstream in(tmp.path / "log");
+    std::ifstream in(tmp.path() / "log");
     const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     CHECK(log.find("EGL") != std::string::npos);
     CHECK_FALSE(fs::exists(out));
-    const int data_only = std::system((no_egl + SPHCLIP_EXE + " " + run +
-                                       " --backend egl --no-png --no-mp4 > /dev/null 2>&1")
-                                          .c_str());
+    const int data_only = std::system(
+        (no_egl + SPHCLIP_EXE + " " + run + " --backend egl --no-png --no-mp4 > /dev/null 2>&1")
+            .c_str());
     CHECK(WEXITSTATUS(data_only) == 0);
     CHECK(fs::exists(out / "stats.csv"));
 }
 
 TEST_CASE("an interrupted run still finalises its video", "[render][cli]") {
-    TempDir tmp;
-    {
-        std::FILE* f = std::fopen((tmp.path / "tiny.json").c_str(), "w");
-        std::fputs(tiny_clip, f);
-        std::fclose(f);
-    }
-    const fs::path out = tmp.path / "out";
+    sph::test::TempFolder tmp;
+    sph::test::write_text(tmp / "tiny.json", tiny_clip);
+    const fs::path out = tmp.path() / "out";
     // A long clip, stopped once its second frame is on disk.
     const std::string command =
         "OMP_WAIT_POLICY=passive " + std::string(SPHCLIP_EXE) + " run '" +
-        (tmp.path / "tiny.json").string() + "' --duration 1000 --quiet --out '" + out.string() +
+        (tmp.path() / "tiny.json").string() + "' --duration 1000 --quiet --out '" + out.string() +
         "' > /dev/null 2>&1 & pid=$!; n=0; while [ ! -e '" +
         (out / "frames" / "frame_00002.png").string() +
         "' ] && [ $n -lt 600 ]; do sleep 0.05; n=$((n+1)); done; kill -TERM $pid; wait $pid";

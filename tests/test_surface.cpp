@@ -1,10 +1,9 @@
 // Buried-particle detection: interior of a block yes; its surface and the
 // layer below no, even when the fluid is compressed.
-#include <catch2/catch.hpp>
-
 #include "sph/neighbours/spatial_hash.hpp"
 #include "sph/surface.hpp"
 
+#include <catch2/catch.hpp>
 #include <random>
 
 using namespace sph;
@@ -27,7 +26,9 @@ std::vector<std::uint8_t> cube_flags(int n, double spacing, double h, double lat
     return buried;
 }
 
-int depth(int i, int n) { return std::min(i, n - 1 - i); }
+int depth(int i, int n) {
+    return std::min(i, n - 1 - i);
+}
 
 } // namespace
 

@@ -2,6 +2,7 @@
 // with libavformat/libavcodec, as a player would.
 
 #include "io/mp4_writer.hpp"
+#include "io/libav_handles.hpp"
 #include "support/temp_folder.hpp"
 
 extern "C" {
@@ -149,18 +150,10 @@ struct DecodedVideo {
 struct InputDeleter {
     void operator()(AVFormatContext* context) const { avformat_close_input(&context); }
 };
-struct CodecContextDeleter {
-    void operator()(AVCodecContext* context) const { avcodec_free_context(&context); }
-};
-struct FrameDeleter {
-    void operator()(AVFrame* frame) const { av_frame_free(&frame); }
-};
-struct PacketDeleter {
-    void operator()(AVPacket* packet) const { av_packet_free(&packet); }
-};
-struct ScalerDeleter {
-    void operator()(SwsContext* scaler) const { sws_freeContext(scaler); }
-};
+using sph::libav::CodecContextDeleter;
+using sph::libav::FrameDeleter;
+using sph::libav::PacketDeleter;
+using sph::libav::ScalerDeleter;
 
 // Back to RGBA with the matrix and range the frame is tagged with.
 Image to_rgba(const AVFrame& frame) {

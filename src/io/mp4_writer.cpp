@@ -1,4 +1,5 @@
 #include "io/mp4_writer.hpp"
+#include "io/libav_handles.hpp"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -43,18 +44,10 @@ struct FormatContextDeleter {
         avformat_free_context(context);
     }
 };
-struct CodecContextDeleter {
-    void operator()(AVCodecContext* context) const { avcodec_free_context(&context); }
-};
-struct FrameDeleter {
-    void operator()(AVFrame* frame) const { av_frame_free(&frame); }
-};
-struct PacketDeleter {
-    void operator()(AVPacket* packet) const { av_packet_free(&packet); }
-};
-struct ScalerDeleter {
-    void operator()(SwsContext* scaler) const { sws_freeContext(scaler); }
-};
+using libav::CodecContextDeleter;
+using libav::FrameDeleter;
+using libav::PacketDeleter;
+using libav::ScalerDeleter;
 
 // The ".partial" file: removed when this goes out of scope unless kept.
 struct TemporaryFile {

@@ -58,7 +58,7 @@ Snapshot initial_snapshot(const Scene& scene) {
 
 Image render_scene(const Scene& scene, std::string_view backend) {
     auto context = make_gl_context(backend);
-    FrameRenderer renderer(make_render_settings(scene, derive(scene)));
+    FrameRenderer renderer(make_render_settings(scene));
     return scene.dimension == 2 ? renderer.render(initial_snapshot<2>(scene))
                                 : renderer.render(initial_snapshot<3>(scene));
 }

@@ -103,7 +103,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
     std::unique_ptr<RenderSink> render_sink;
     if (gl_context) {
         render_sink = std::make_unique<RenderSink>(
-            std::move(gl_context), make_render_settings(scene, derived),
+            std::move(gl_context), make_render_settings(scene),
             options.png ? folder / "frames" : fs::path(),
             options.mp4 ? folder / "clip.mp4" : fs::path(), scene.fps,
             Mp4Options{scene.render.video_quality, scene.render.video_preset, 0});
@@ -158,8 +158,8 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
                    derived.dt, frames, scene.duration, folder.string());
         if (render)
             fmt::print("sphclip: rendering {}x{} with {} ({}, OpenGL {})\n", scene.render.size[0],
-                       scene.render.size[1], render->gl_info().backend,
-                       render->gl_info().renderer, render->gl_info().version);
+                       scene.render.size[1], render->gl_info().backend, render->gl_info().renderer,
+                       render->gl_info().version);
     }
 
     Progress progress(!options.quiet && isatty(STDOUT_FILENO));
@@ -222,9 +222,9 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
                 return exit_interrupted;
             }
             sim.update_fields();
-            simulate_seconds.push_back(std::chrono::duration<double>(
-                                           std::chrono::steady_clock::now() - simulate_start)
-                                           .count());
+            simulate_seconds.push_back(
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - simulate_start)
+                    .count());
             snapshot.frame = k;
             snapshot.steps = sim.steps();
             snapshot.time = sim.time();

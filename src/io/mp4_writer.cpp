@@ -1,4 +1,5 @@
 #include "io/mp4_writer.hpp"
+
 #include "io/libav_handles.hpp"
 
 extern "C" {

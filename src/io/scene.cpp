@@ -516,17 +516,18 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.render.colour =
         r.choice("render.colour", d.render.colour, {"velocity", "density", "pressure"},
                  "Field the particles are coloured by.");
-    s.render.colour_map =
-        r.choice("render.colour_map", d.render.colour_map, {"auto", "viridis", "turbo", "diverging"},
-                 "Colour map; auto: viridis for speed, diverging around rho0 for density, turbo "
-                 "for pressure.");
+    s.render.colour_map = r.choice(
+        "render.colour_map", d.render.colour_map, {"auto", "viridis", "turbo", "diverging"},
+        "Colour map; auto: viridis for speed, diverging around rho0 for density, turbo "
+        "for pressure.");
     if (const auto range = r.optional_vector("render.range", 2, "field unit", "from the scene",
                                              "Field values at the two ends of the colour map; by "
                                              "default speed 0..sqrt(2 g H), density rho0 +- 3%, "
                                              "pressure 0..rho0 g H (H: domain height).")) {
         if (!((*range)[0] < (*range)[1]))
-            r.fail("render.range", fmt::format("the low end must be below the high end, got [{}, {}]",
-                                               (*range)[0], (*range)[1]));
+            r.fail("render.range",
+                   fmt::format("the low end must be below the high end, got [{}, {}]", (*range)[0],
+                               (*range)[1]));
         s.render.range = std::array<double, 2>{(*range)[0], (*range)[1]};
     }
     s.render.spheres = r.choice("render.spheres", d.render.spheres, {"impostor", "mesh"},
@@ -539,11 +540,11 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.render.video_quality =
         r.integer("render.video_quality", d.render.video_quality, 0, 51,
                   "MP4 constant quality (x264 CRF): 0 lossless, 18-23 visually good, 51 worst.");
-    s.render.video_preset = r.choice(
-        "render.video_preset", d.render.video_preset,
-        {"ultrafast", "superfast", "veryfast", "faster", "fast", "medium", "slow", "slower",
-         "veryslow"},
-        "MP4 encoder speed: faster presets make larger files at the same quality.");
+    s.render.video_preset =
+        r.choice("render.video_preset", d.render.video_preset,
+                 {"ultrafast", "superfast", "veryfast", "faster", "fast", "medium", "slow",
+                  "slower", "veryslow"},
+                 "MP4 encoder speed: faster presets make larger files at the same quality.");
     s.render.backend = r.choice("render.backend", d.render.backend, {"auto", "egl", "osmesa"},
                                 "Headless GL context.");
     s.render.camera.position = r.optional_vector(

@@ -60,15 +60,15 @@ struct Scene {
     } effects;
 
     struct Render {
-        std::array<int, 2> size{1280, 720}; // px
-        std::string colour = "velocity";    // density | velocity | pressure
-        std::string colour_map = "auto";    // auto | viridis | turbo | diverging
+        std::array<int, 2> size{1280, 720};         // px
+        std::string colour = "velocity";            // density | velocity | pressure
+        std::string colour_map = "auto";            // auto | viridis | turbo | diverging
         std::optional<std::array<double, 2>> range; // field values at the map's ends
-        std::string spheres = "impostor";   // impostor | mesh
-        bool cull_buried = true;            // 3D: skip particles no camera can see
-        int video_quality = 20;             // x264 constant quality (CRF), 0 best - 51
-        std::string video_preset = "veryfast"; // x264 speed/size trade-off
-        std::string backend = "auto";       // auto | egl | osmesa
+        std::string spheres = "impostor";           // impostor | mesh
+        bool cull_buried = true;                    // 3D: skip particles no camera can see
+        int video_quality = 20;                     // x264 constant quality (CRF), 0 best - 51
+        std::string video_preset = "veryfast";      // x264 speed/size trade-off
+        std::string backend = "auto";               // auto | egl | osmesa
         struct Camera {
             std::optional<Vec3> position; // m; default frames the domain
             std::optional<Vec3> target;   // m; default the domain centre

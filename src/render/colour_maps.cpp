@@ -37,7 +37,9 @@ std::vector<Rgb8> interpolate(const std::uint32_t (&keys)[N], int size) {
 
 } // namespace
 
-std::vector<std::string> colour_map_names() { return {"viridis", "turbo", "diverging"}; }
+std::vector<std::string> colour_map_names() {
+    return {"viridis", "turbo", "diverging"};
+}
 
 std::vector<Rgb8> colour_map_table(std::string_view name, int size) {
     if (name == "viridis")

@@ -1,12 +1,12 @@
 // EGL without a display: Mesa's surfaceless platform (llvmpipe or a Mesa GPU
 // driver), else the first EGL device (how NVIDIA's driver offers headless
 // contexts), else the default display.
+#include "render/gl_context.hpp"
+
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <cstdio>
 #include <cstring>
-
-#include "render/gl_context.hpp"
 
 namespace sph {
 
@@ -22,7 +22,9 @@ bool has_extension(const char* list, const char* name) {
     return false;
 }
 
-void* egl_proc(const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
+void* egl_proc(const char* name) {
+    return reinterpret_cast<void*>(eglGetProcAddress(name));
+}
 
 class EglContext final : public GlContext {
   public:

@@ -1,20 +1,19 @@
 #include "render/frame_renderer.hpp"
 
+#include "render/colour_maps.hpp"
+#include "render/sphere_geometry.hpp"
+#include "render/text.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <stdexcept>
-#include <vector>
-
 #include <embedded_shaders.hpp>
 #include <fmt/format.h>
 #include <glad/gl.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
-
-#include "render/colour_maps.hpp"
-#include "render/sphere_geometry.hpp"
-#include "render/text.hpp"
+#include <stdexcept>
+#include <vector>
 
 namespace sph {
 
@@ -75,7 +74,7 @@ struct OverlayVertex {
 
 } // namespace
 
-RenderSettings make_render_settings(const Scene& scene, const Derived& derived) {
+RenderSettings make_render_settings(const Scene& scene) {
     RenderSettings r;
     r.width = scene.render.size[0];
     r.height = scene.render.size[1];
@@ -96,7 +95,8 @@ RenderSettings make_render_settings(const Scene& scene, const Derived& derived) 
     g = std::sqrt(g);
     double block_speed = 0;
     for (const auto& b : scene.fluid.blocks)
-        block_speed = std::max(block_speed, std::hypot(b.velocity[0], b.velocity[1], b.velocity[2]));
+        block_speed =
+            std::max(block_speed, std::hypot(b.velocity[0], b.velocity[1], b.velocity[2]));
     const double rho0 = scene.material.rest_density;
     if (r.field == "velocity") {
         r.label = "speed (m/s)";
@@ -124,8 +124,7 @@ RenderSettings make_render_settings(const Scene& scene, const Derived& derived) 
         r.camera_target = {(*scene.render.camera.target)[0], (*scene.render.camera.target)[1],
                            (*scene.render.camera.target)[2]};
     if (scene.render.camera.position) {
-        r.camera_position = {(*scene.render.camera.position)[0],
-                             (*scene.render.camera.position)[1],
+        r.camera_position = {(*scene.render.camera.position)[0], (*scene.render.camera.position)[1],
                              (*scene.render.camera.position)[2]};
     } else {
         // From the front, right and above, at the distance where the domain's
@@ -136,7 +135,6 @@ RenderSettings make_render_settings(const Scene& scene, const Derived& derived) 
         r.camera_position = r.camera_target + distance * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
     }
     r.cull_buried = scene.dimension == 3 && scene.render.cull_buried;
-    (void)derived;
     return r;
 }
 
@@ -174,8 +172,8 @@ struct FrameRenderer::Gl {
 FrameRenderer::FrameRenderer(const RenderSettings& settings)
     : settings_(settings), gl_(std::make_unique<Gl>()) {
     Gl& g = *gl_;
-    g.impostor_program = link(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag,
-                              shaders::lighting);
+    g.impostor_program =
+        link(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag, shaders::lighting);
     g.mesh_program = link(shaders::sphere_mesh_vert, shaders::sphere_mesh_frag, shaders::lighting);
     g.overlay_program = link(shaders::overlay_vert, shaders::overlay_frag, "");
 
@@ -244,12 +242,10 @@ FrameRenderer::FrameRenderer(const RenderSettings& settings)
     glRenderbufferStorageMultisample(GL_RENDERBUFFER, settings.samples, GL_RGBA8, w, h);
     glGenRenderbuffers(1, &g.msaa_depth);
     glBindRenderbuffer(GL_RENDERBUFFER, g.msaa_depth);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, settings.samples, GL_DEPTH_COMPONENT24, w,
-                                     h);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, settings.samples, GL_DEPTH_COMPONENT24, w, h);
     glGenFramebuffers(1, &g.msaa_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                              g.msaa_colour);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, g.msaa_colour);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g.msaa_depth);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("the multisampled framebuffer is incomplete");
@@ -279,19 +275,19 @@ Image FrameRenderer::render(const Snapshot& frame) {
     const bool cull = s.cull_buried && frame.buried.size() == frame.size();
     g.instances.resize(frame.size() * 4);
     std::size_t n = 0;
+    // The field is chosen once, not per particle.
+    const bool speed = s.field == "velocity";
+    const std::vector<double>& field = s.field == "density" ? frame.density : frame.pressure;
     for (std::size_t i = 0; i < frame.size(); ++i) {
         if (cull && frame.buried[i])
             continue;
         double scalar = 0;
-        if (s.field == "velocity") {
-            double v2 = 0;
+        if (speed) {
             for (int a = 0; a < dim; ++a)
-                v2 += frame.velocity[i * dim + a] * frame.velocity[i * dim + a];
-            scalar = std::sqrt(v2);
-        } else if (s.field == "density") {
-            scalar = frame.density[i];
+                scalar += frame.velocity[i * dim + a] * frame.velocity[i * dim + a];
+            scalar = std::sqrt(scalar);
         } else {
-            scalar = frame.pressure[i];
+            scalar = field[i];
         }
         for (int a = 0; a < 3; ++a)
             g.instances[n * 4 + a] = a < dim ? float(frame.position[i * dim + a] - origin[a]) : 0.f;
@@ -315,21 +311,23 @@ Image FrameRenderer::render(const Snapshot& frame) {
         const double available_w = std::max(1.0, w - bar_space - 2 * margin);
         const double available_h = std::max(1.0, h - caption_space - 2 * margin);
         const double scale = std::min(available_w / size.x, available_h / size.y); // px per m
-        const double left = s.domain_min.x - origin.x - (margin + 0.5 * (available_w - scale * size.x)) / scale;
-        const double bottom = s.domain_min.y - origin.y - (margin + 0.5 * (available_h - scale * size.y)) / scale;
+        const double left =
+            s.domain_min.x - origin.x - (margin + 0.5 * (available_w - scale * size.x)) / scale;
+        const double bottom =
+            s.domain_min.y - origin.y - (margin + 0.5 * (available_h - scale * size.y)) / scale;
         const double depth = 10 + 4 * s.radius;
         projection = glm::ortho(left, left + w / scale, bottom, bottom + h / scale, -depth, depth);
     } else {
-        view = glm::lookAt(glm::vec3(s.camera_position - origin), glm::vec3(s.camera_target - origin),
-                           glm::vec3(0, 1, 0));
+        view = glm::lookAt(glm::vec3(s.camera_position - origin),
+                           glm::vec3(s.camera_target - origin), glm::vec3(0, 1, 0));
         const double distance = glm::length(s.camera_position - s.camera_target);
         const double extent = glm::length(s.domain_max - s.domain_min);
         projection = glm::perspective(glm::radians(float(s.fov)), float(w) / float(h),
                                       float(std::max(1e-4 * distance, 0.01 * s.radius)),
                                       float(4 * (distance + extent)));
         // Centre the view in the part of the image left of the colour bar.
-        projection = glm::translate(glm::mat4(1.f), glm::vec3(float(-bar_space / w), 0.f, 0.f)) *
-                     projection;
+        projection =
+            glm::translate(glm::mat4(1.f), glm::vec3(float(-bar_space / w), 0.f, 0.f)) * projection;
     }
 
     glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
@@ -354,7 +352,8 @@ Image FrameRenderer::render(const Snapshot& frame) {
         const bool impostor = s.spheres == "impostor";
         const GLuint program = impostor ? g.impostor_program : g.mesh_program;
         glUseProgram(program);
-        glUniformMatrix4fv(glGetUniformLocation(program, "u_view"), 1, GL_FALSE, glm::value_ptr(view));
+        glUniformMatrix4fv(glGetUniformLocation(program, "u_view"), 1, GL_FALSE,
+                           glm::value_ptr(view));
         glUniformMatrix4fv(glGetUniformLocation(program, "u_projection"), 1, GL_FALSE,
                            glm::value_ptr(projection));
         glUniform1f(glGetUniformLocation(program, "u_radius"), float(s.radius));
@@ -405,7 +404,8 @@ Image FrameRenderer::render(const Snapshot& frame) {
                      vertices.data(), GL_STREAM_DRAW);
         glUniformMatrix4fv(glGetUniformLocation(g.overlay_program, "u_transform"), 1, GL_FALSE,
                            glm::value_ptr(transform));
-        glUniform4fv(glGetUniformLocation(g.overlay_program, "u_colour"), 1, glm::value_ptr(colour));
+        glUniform4fv(glGetUniformLocation(g.overlay_program, "u_colour"), 1,
+                     glm::value_ptr(colour));
         glDrawArrays(mode, 0, GLsizei(vertices.size()));
     };
     draw_overlay(g.lines, GL_LINES, projection * view, {0.55f, 0.58f, 0.62f, 1.f});
@@ -416,14 +416,18 @@ Image FrameRenderer::render(const Snapshot& frame) {
     const float bar_x = float(w - bar_space) + 8.f * text_scale, bar_w = 9.f * text_scale;
     const float bar_top = float(caption_space + margin) + 10.f * text_scale;
     const float bar_bottom = float(h - margin) - 5.f * text_scale;
-    g.overlay_triangles = {{bar_x, bar_bottom, 0, 0},       {bar_x + bar_w, bar_bottom, 0, 0},
-                           {bar_x + bar_w, bar_top, 0, 1},   {bar_x, bar_bottom, 0, 0},
-                           {bar_x + bar_w, bar_top, 0, 1},   {bar_x, bar_top, 0, 1}};
+    g.overlay_triangles = {{bar_x, bar_bottom, 0, 0},      {bar_x + bar_w, bar_bottom, 0, 0},
+                           {bar_x + bar_w, bar_top, 0, 1}, {bar_x, bar_bottom, 0, 0},
+                           {bar_x + bar_w, bar_top, 0, 1}, {bar_x, bar_top, 0, 1}};
     draw_overlay(g.overlay_triangles, GL_TRIANGLES, pixels, {1, 1, 1, 1});
-    g.lines = {{bar_x, bar_top, 0, -1},          {bar_x + bar_w, bar_top, 0, -1},
-               {bar_x + bar_w, bar_top, 0, -1},  {bar_x + bar_w, bar_bottom, 0, -1},
-               {bar_x + bar_w, bar_bottom, 0, -1}, {bar_x, bar_bottom, 0, -1},
-               {bar_x, bar_bottom, 0, -1},       {bar_x, bar_top, 0, -1}};
+    g.lines = {{bar_x, bar_top, 0, -1},
+               {bar_x + bar_w, bar_top, 0, -1},
+               {bar_x + bar_w, bar_top, 0, -1},
+               {bar_x + bar_w, bar_bottom, 0, -1},
+               {bar_x + bar_w, bar_bottom, 0, -1},
+               {bar_x, bar_bottom, 0, -1},
+               {bar_x, bar_bottom, 0, -1},
+               {bar_x, bar_top, 0, -1}};
     for (int k = 0; k <= 4; ++k) {
         const float y = bar_bottom + (bar_top - bar_bottom) * float(k) / 4.f;
         g.lines.push_back({bar_x + bar_w, y, 0, -1});

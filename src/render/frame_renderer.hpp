@@ -4,15 +4,14 @@
 // colour bar with its range and unit, and a caption. It sees only the
 // Snapshot, never the simulation.
 
-#include <array>
-#include <memory>
-#include <string>
-
-#include <glm/glm.hpp>
-
 #include "io/image.hpp"
 #include "io/scene.hpp"
 #include "sph/snapshot.hpp"
+
+#include <array>
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
 
 namespace sph {
 
@@ -28,15 +27,15 @@ struct RenderSettings {
     double radius = 0.001;             // m, drawn sphere radius
     glm::dvec3 domain_min{0}, domain_max{1};
     glm::dvec3 camera_position{0}, camera_target{0}; // 3D
-    double fov = 40;                                  // degrees, vertical
-    int samples = 4;                                  // multisampling
+    double fov = 40;                                 // degrees, vertical
+    int samples = 4;                                 // multisampling
     // Skip particles the snapshot marks as buried deep in the fluid (3D).
     bool cull_buried = false;
 };
 
 // Settings from the scene's render section; ranges the scene leaves open come
 // from the scene's physics, so colours mean the same in every frame.
-RenderSettings make_render_settings(const Scene& scene, const Derived& derived);
+RenderSettings make_render_settings(const Scene& scene);
 
 struct FrameTimings {
     double draw_seconds = 0;     // submitting and finishing the draw

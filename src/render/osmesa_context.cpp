@@ -1,16 +1,18 @@
 // OSMesa: Mesa's off-screen software rasteriser (llvmpipe), available where no
 // EGL is. It wants a client-memory colour buffer to make the context current;
 // a small one does, since sphclip draws into framebuffer objects.
+#include "render/gl_context.hpp"
+
 #include <GL/osmesa.h>
 #include <vector>
-
-#include "render/gl_context.hpp"
 
 namespace sph {
 
 namespace {
 
-void* osmesa_proc(const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); }
+void* osmesa_proc(const char* name) {
+    return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+}
 
 class OsmesaContext final : public GlContext {
   public:
@@ -50,6 +52,8 @@ class OsmesaContext final : public GlContext {
 
 } // namespace
 
-std::unique_ptr<GlContext> make_osmesa_context() { return std::make_unique<OsmesaContext>(); }
+std::unique_ptr<GlContext> make_osmesa_context() {
+    return std::make_unique<OsmesaContext>();
+}
 
 } // namespace sph

@@ -1,14 +1,14 @@
 #include "render/render_sink.hpp"
 
-#include <chrono>
-
 #include "io/particle_export.hpp"
+
+#include <chrono>
 
 namespace sph {
 
 RenderSink::RenderSink(std::unique_ptr<GlContext> context, const RenderSettings& settings,
-                       std::filesystem::path png_folder, std::filesystem::path mp4_path,
-                       double fps, const Mp4Options& mp4_options)
+                       std::filesystem::path png_folder, std::filesystem::path mp4_path, double fps,
+                       const Mp4Options& mp4_options)
     : context_(std::move(context)), renderer_(settings), png_folder_(std::move(png_folder)) {
     if (!png_folder_.empty()) {
         std::filesystem::create_directories(png_folder_);
@@ -29,8 +29,7 @@ void RenderSink::write(const Snapshot& frame) {
         mp4_->write(image);
     if (png_)
         png_->submit(png_folder_ / (frame_stem(frame.frame) + ".png"), std::move(image));
-    cost.encode_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    cost.encode_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     costs_.push_back(cost);
 }
 

@@ -3,15 +3,15 @@
 // context, writes frames/frame_NNNNN.png (on a worker thread) and feeds the
 // same pixels to the MP4 encoder.
 
-#include <filesystem>
-#include <memory>
-#include <vector>
-
 #include "io/frame_sink.hpp"
 #include "io/mp4_writer.hpp"
 #include "io/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <vector>
 
 namespace sph {
 

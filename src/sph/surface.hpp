@@ -11,11 +11,11 @@
 // neighbour-cone test in the spirit of the surface detection of
 // Marrone et al. 2010 (sec. 2.2), reduced to what visibility needs.
 
-#include <cstdint>
-#include <vector>
-
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/state.hpp"
+
+#include <cstdint>
+#include <vector>
 
 namespace sph {
 

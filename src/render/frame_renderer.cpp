@@ -444,7 +444,7 @@ Image FrameRenderer::render(const Snapshot& frame) {
                               text_scale, g.text);
     }
     const float label_w = text_width(s.label, text_scale);
-    append_text_triangles(s.label, std::min(bar_x, float(w) - label_w - 6.f),
+    append_text_triangles(s.label, std::min(bar_x, float(w) - label_w - 4.f * text_scale),
                           bar_top - 2.5f * glyph_h, text_scale, g.text);
     append_text_triangles(fmt::format("t = {:.3f} s    frame {}", frame.time, frame.frame),
                           float(margin), float(margin) * 0.5f + 2.f * text_scale, text_scale,

@@ -1,5 +1,6 @@
 #include "render/text.hpp"
 
+#include <algorithm>
 #include <string>
 
 #if defined(__GNUC__)
@@ -37,8 +38,14 @@ void append_text_triangles(std::string_view text, float x, float y, float scale,
 }
 
 float text_width(std::string_view text, float scale) {
-    std::string copy(text);
-    return scale * float(stb_easy_font_width(copy.data()));
+    // From the glyphs' own quads: stb_easy_font_width leaves out the last
+    // glyph's right edge.
+    std::vector<float> xy;
+    append_text_triangles(text, 0, 0, scale, xy);
+    float right = 0;
+    for (std::size_t k = 0; k < xy.size(); k += 2)
+        right = std::max(right, xy[k]);
+    return right;
 }
 
 float text_height(std::string_view text, float scale) {

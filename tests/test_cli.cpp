@@ -136,7 +136,8 @@ constexpr std::size_t tiny_3d_particles = 216;
 
 const std::string stats_header =
     "frame,time,steps,dt,particles,density_avg,density_max,density_error_avg_pct,"
-    "density_error_max_pct,kinetic_energy,max_speed,wall_s";
+    "density_error_max_pct,kinetic_energy,max_speed,dt_min,dt_max,pressure_iterations,"
+    "divergence_iterations,wall_s";
 
 fs::path write_scene(const TempFolder& tmp, const std::string& text,
                      const std::string& name = "scene.json") {
@@ -153,16 +154,18 @@ void check_run_outputs(const fs::path& out, int dimension, std::size_t particles
     REQUIRE(stats.rows.size() == frames);
     for (std::size_t k = 0; k < frames; ++k) {
         INFO("frame " << k);
-        REQUIRE(stats.rows[k].size() == 12);
+        REQUIRE(stats.rows[k].size() == 16);
         CHECK(stats.number(k, "frame") == double(k));
         CHECK(stats.number(k, "particles") == double(particles));
         const double time = stats.number(k, "time");
-        const double dt = stats.number(k, "dt");
-        CHECK(dt > 0);
-        // Times are written with 9 significant digits.
-        CHECK(time >= double(k) / fps - 1e-8);
-        CHECK(time < double(k) / fps + dt * (1 + 1e-5));
+        // Steps land on the frame times; times are written with 9 significant digits.
+        CHECK(time == Approx(double(k) / fps).margin(1e-8));
         if (k > 0) {
+            // dt: the mean step since the previous frame, within the range written beside it.
+            const double dt = stats.number(k, "dt");
+            CHECK(dt > 0);
+            CHECK(stats.number(k, "dt_min") <= dt * (1 + 1e-5));
+            CHECK(stats.number(k, "dt_max") >= dt * (1 - 1e-5));
             CHECK(time >= stats.number(k - 1, "time"));
             CHECK(stats.number(k, "steps") >= stats.number(k - 1, "steps"));
         }
@@ -210,7 +213,11 @@ void check_run_outputs(const fs::path& out, int dimension, std::size_t particles
     CHECK(scene.at("dimension") == dimension);
     CHECK(scene.at("fluid").at("mass").get<double>() > 0);
     CHECK(scene.at("fluid").at("smoothing_length").get<double>() > 0);
-    CHECK(scene.at("solver").at("dt").get<double>() == Approx(stats.number(0, "dt")).epsilon(1e-5));
+    // Adaptive steps (no solver.dt), within the scene's bounds.
+    CHECK(scene.at("solver").at("dt").is_null());
+    CHECK(run.at("derived").at("dt").get<double>() > 0);
+    for (std::size_t k = 1; k < frames; ++k)
+        CHECK(stats.number(k, "dt_max") <= scene.at("solver").at("dt_max").get<double>());
     // The resolved scene reads back as the same scene.
     CHECK(sph::to_json(sph::parse_scene(scene.dump(), "run.json", {})) == scene);
 }

@@ -23,7 +23,6 @@ Params<D> small_params() {
     p.rest_density = 2.0;
     p.bulk_modulus = 3.0; // the seed's K' = K / rho0 = 1.5
     p.viscosity = 0.25;
-    p.dt = 1e-3;
     p.domain = {Vec<D>(-10), Vec<D>(10)};
     return p;
 }
@@ -174,7 +173,6 @@ TEST_CASE("the seed solver conserves momentum without walls and gravity", "[seed
     p.mass = 0.01;
     p.rest_density = 1.0;
     p.bulk_modulus = 1.0;
-    p.dt = 1e-3;
     std::vector<Vec<2>> x, v;
     for (int i = 0; i < 12; ++i)
         for (int j = 0; j < 12; ++j) {
@@ -188,10 +186,11 @@ TEST_CASE("the seed solver conserves momentum without walls and gravity", "[seed
     AllPairs<2> search;
     NeighbourList list;
     EffectList<2> none;
-    StepContext<2> context{search, list, none};
+    NeighbourList no_walls;
+    StepContext<2> context{search, list, nullptr, no_walls, none};
     SeedSolver<2> solver;
     for (int step = 0; step < 200; ++step)
-        solver.step(p, s, context);
+        solver.step(p, 1e-3, s, context);
     Vec<2> after(0);
     Real speed = 0;
     for (auto& vi : s.velocity) {

@@ -204,12 +204,11 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
         for (std::uint64_t k = 0; k < frames; ++k) {
             // A frame is taken when simulation time crosses k / fps.
             const double frame_time = double(k) / scene.fps;
-            const double tolerance = 1e-9 * sim.params().dt;
             const auto simulate_start = std::chrono::steady_clock::now();
-            while (sim.time() < frame_time - tolerance) {
+            while (!sim.reached(frame_time)) {
                 if (interrupt_signal.load() != 0)
                     break;
-                sim.step();
+                sim.step_toward(frame_time);
             }
             if (interrupt_signal.load() != 0) {
                 progress.done();
@@ -228,7 +227,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             snapshot.frame = k;
             snapshot.steps = sim.steps();
             snapshot.time = sim.time();
-            snapshot.dt = sim.params().dt;
+            snapshot.steps_taken = sim.take_counters();
             snapshot.stats = measure_frame(sim.params(), sim.state());
             snapshot.wall_seconds = wall();
             copy_fields(sim.state(), snapshot);

@@ -5,6 +5,7 @@
 #include "sph/lattice.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
 #include "sph/solvers/solver.hpp"
+#include "sph/time_step.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -497,11 +498,48 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.material.viscosity = r.number("material.viscosity", d.material.viscosity, "Pa.s",
                                     "Dynamic viscosity mu.", Bound::non_negative);
 
-    s.solver.name = r.choice("solver.name", d.solver.name, solver_names(), "Solver.");
+    s.solver.name = r.choice("solver.name", d.solver.name, solver_names(),
+                             "Solver: seed (the report's model), wcsph (Becker & Teschner 2007) "
+                             "or dfsph (Bender & Koschier 2017).");
+    s.solver.kernel = r.choice("solver.kernel", d.solver.kernel,
+                               {"auto", "seed", "cubic_spline", "wendland_c2"},
+                               "Smoothing kernel: seed (poly6 values, spiky gradients), "
+                               "cubic_spline or wendland_c2; auto: seed for the seed solver, "
+                               "cubic_spline for the others.");
     s.solver.dt = r.optional_number(
-        "solver.dt", "s", "from stability limits",
-        "Fixed time step; by default min(0.4 h / c, 0.125 h^2 rho0 / mu, 0.25 sqrt(h / g)).",
+        "solver.dt", "s", "adaptive",
+        "Fixed time step; without it the step adapts (solver.cfl, solver.dt_min, solver.dt_max).",
         Bound::positive);
+    s.solver.cfl = r.number("solver.cfl", d.solver.cfl, "",
+                            "Courant number of the adaptive step: dt <= cfl h / (c + v_max) for "
+                            "seed and wcsph, dt <= cfl spacing / v_max for dfsph.",
+                            Bound::positive);
+    s.solver.dt_min = r.number("solver.dt_min", d.solver.dt_min, "s",
+                               "Smallest adaptive step.", Bound::positive);
+    s.solver.dt_max = r.number("solver.dt_max", d.solver.dt_max, "s", "Largest adaptive step.",
+                               Bound::positive);
+    s.solver.integrator = r.choice("solver.integrator", d.solver.integrator,
+                                   {"symplectic_euler", "verlet"},
+                                   "Time integrator of seed and wcsph: symplectic_euler (first "
+                                   "order, the seed's) or verlet (kick-drift-kick, second order).");
+    s.solver.walls = r.choice("solver.walls", d.solver.walls, {"auto", "reflect", "particles"},
+                              "Domain walls: reflect (the seed's) or particles (Akinci et al. "
+                              "2012 boundary particles); auto: reflect for seed, particles for "
+                              "the others.");
+    s.solver.artificial_viscosity =
+        r.number("solver.artificial_viscosity", d.solver.artificial_viscosity, "",
+                 "Alpha of Monaghan's artificial viscosity (wcsph).", Bound::non_negative);
+    s.solver.tolerance = r.number("solver.tolerance", d.solver.tolerance, "%",
+                                  "dfsph: mean density error the density solve stops at.",
+                                  Bound::positive);
+    s.solver.divergence_tolerance =
+        r.number("solver.divergence_tolerance", d.solver.divergence_tolerance, "%",
+                 "dfsph: mean density change per step the divergence solve stops at.",
+                 Bound::positive);
+    s.solver.min_iterations = r.integer("solver.min_iterations", d.solver.min_iterations, 0,
+                                        100000, "dfsph: fewest iterations of each solve.");
+    s.solver.max_iterations = r.integer("solver.max_iterations", d.solver.max_iterations, 1,
+                                        100000, "dfsph: most iterations of each solve.");
     s.solver.neighbour_search = r.choice("solver.neighbour_search", d.solver.neighbour_search,
                                          neighbour_search_names(), "Neighbour search.");
 
@@ -559,6 +597,20 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         *docs = r.docs();
 
     // Checks that involve several fields.
+    if (s.solver.dt_min > s.solver.dt_max)
+        r.fail("solver.dt_min", fmt::format("must not exceed solver.dt_max ({} s), got {} s",
+                                            s.solver.dt_max, s.solver.dt_min));
+    if (s.solver.min_iterations > s.solver.max_iterations)
+        r.fail("solver.min_iterations",
+               fmt::format("must not exceed solver.max_iterations ({}), got {}",
+                           s.solver.max_iterations, s.solver.min_iterations));
+    if (s.solver.name == "dfsph" && s.solver.integrator != "symplectic_euler")
+        r.fail("solver.integrator",
+               "dfsph integrates with its own scheme (symplectic Euler between its two pressure "
+               "solves); verlet is for the seed and wcsph solvers");
+    if (s.solver.name == "seed" && s.solver.walls == "particles")
+        r.fail("solver.walls", "the seed solver's walls reflect; boundary particles are for "
+                               "wcsph and dfsph");
     for (int a = 0; a < dim; ++a)
         if (!(s.domain.min[a] < s.domain.max[a]))
             r.fail("domain", fmt::format("min must be below max on every axis (axis {}: {} >= {})",
@@ -694,36 +746,63 @@ std::vector<KeyDoc> scene_keys() {
     return docs;
 }
 
+KernelKind kernel_kind(const std::string& name) {
+    if (name == "cubic_spline")
+        return KernelKind::cubic_spline;
+    if (name == "wendland_c2")
+        return KernelKind::wendland_c2;
+    return KernelKind::seed;
+}
+
+TimeStepSettings time_step_settings(const Scene& s) {
+    TimeStepSettings t;
+    t.fixed = s.solver.dt.has_value();
+    t.dt = s.solver.dt.value_or(0);
+    t.cfl = s.solver.cfl;
+    t.dt_min = s.solver.dt_min;
+    t.dt_max = s.solver.dt_max;
+    return t;
+}
+
 Derived derive(const Scene& s) {
     Derived d;
     const int dim = s.dimension;
     const double ratio = s.fluid.smoothing_ratio.value_or(default_smoothing_ratio(dim));
     d.h = s.fluid.smoothing_length.value_or(ratio * s.fluid.spacing);
+    d.kernel = s.solver.kernel != "auto"  ? s.solver.kernel
+               : s.solver.name == "seed" ? "seed"
+                                         : "cubic_spline";
+    d.walls = s.solver.walls != "auto" ? s.solver.walls
+              : s.solver.name == "seed" ? "reflect"
+                                        : "particles";
     if (s.fluid.mass) {
         d.mass = *s.fluid.mass;
     } else {
-        // The seed's density kernel; a lattice particle gets exactly rho0.
-        const double sum = dim == 2 ? lattice_kernel_sum<2>(Poly6<2>(d.h), s.fluid.spacing)
-                                    : lattice_kernel_sum<3>(Poly6<3>(d.h), s.fluid.spacing);
+        // The density kernel's sum on the lattice: a lattice particle gets exactly rho0.
+        const KernelKind kind = kernel_kind(d.kernel);
+        const double sum =
+            dim == 2 ? with_kernel<2>(kind, d.h,
+                                      [&](const auto& W) { return lattice_kernel_sum<2>(W, s.fluid.spacing); })
+                     : with_kernel<3>(kind, d.h, [&](const auto& W) {
+                           return lattice_kernel_sum<3>(W, s.fluid.spacing);
+                       });
         d.mass = s.material.rest_density / sum;
     }
     d.sound_speed = std::sqrt(s.material.bulk_modulus / s.material.rest_density);
+    d.fixed_dt = s.solver.dt.has_value();
     if (s.solver.dt) {
         d.dt = *s.solver.dt;
     } else {
-        // Acoustic CFL, viscous diffusion and body-force limits (Monaghan 1992;
-        // Morris et al. 1997, eqs. 10-11), each with its customary safety factor.
-        d.dt = 0.4 * d.h / d.sound_speed;
-        if (s.material.viscosity > 0)
-            d.dt =
-                std::min(d.dt, 0.125 * d.h * d.h * s.material.rest_density / s.material.viscosity);
-        if (s.effects.gravity) {
-            double g2 = 0;
+        // The adaptive rule at rest under gravity: the first step's size.
+        double g = 0;
+        if (s.effects.gravity)
             for (int a = 0; a < dim; ++a)
-                g2 += (*s.effects.gravity)[a] * (*s.effects.gravity)[a];
-            if (g2 > 0)
-                d.dt = std::min(d.dt, 0.25 * std::sqrt(d.h / std::sqrt(g2)));
-        }
+                g += (*s.effects.gravity)[a] * (*s.effects.gravity)[a];
+        d.dt = stable_time_step(time_step_settings(s),
+                                {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density,
+                                 s.material.viscosity},
+                                {.carries_sound = s.solver.name != "dfsph"},
+                                {0, std::sqrt(g)});
     }
     for (const auto& b : s.fluid.blocks) {
         std::size_t count = 1;
@@ -765,7 +844,20 @@ json to_json(const Scene& s) {
           {"bulk_modulus", s.material.bulk_modulus},
           {"viscosity", s.material.viscosity}}},
         {"solver",
-         {{"name", s.solver.name}, {"dt", d.dt}, {"neighbour_search", s.solver.neighbour_search}}},
+         {{"name", s.solver.name},
+          {"kernel", d.kernel},
+          {"dt", s.solver.dt ? json(*s.solver.dt) : json()},
+          {"cfl", s.solver.cfl},
+          {"dt_min", s.solver.dt_min},
+          {"dt_max", s.solver.dt_max},
+          {"integrator", s.solver.integrator},
+          {"walls", d.walls},
+          {"artificial_viscosity", s.solver.artificial_viscosity},
+          {"tolerance", s.solver.tolerance},
+          {"divergence_tolerance", s.solver.divergence_tolerance},
+          {"min_iterations", s.solver.min_iterations},
+          {"max_iterations", s.solver.max_iterations},
+          {"neighbour_search", s.solver.neighbour_search}}},
         {"effects", effects},
         {"render",
          {{"size", s.render.size},

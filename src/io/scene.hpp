@@ -4,6 +4,8 @@
 // after Martin & Moyce 1952), filled from a JSON scene file and overridden by
 // `--set KEY=VALUE`. Vectors hold 3 components; a 2D scene uses the first 2.
 
+#include "sph/params.hpp"
+
 #include <array>
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
@@ -49,8 +51,19 @@ struct Scene {
     } material;
 
     struct Solver {
-        std::string name = "seed";
-        std::optional<double> dt; // s; default from the stability limits
+        std::string name = "seed";                 // seed | wcsph | dfsph
+        std::string kernel = "auto";               // auto | seed | cubic_spline | wendland_c2
+        std::optional<double> dt;                  // s; fixed step; default adaptive
+        double cfl = 0.4;                          // Courant number of the adaptive step
+        double dt_min = 1e-7;                      // s
+        double dt_max = 5e-3;                      // s
+        std::string integrator = "symplectic_euler"; // symplectic_euler | verlet
+        std::string walls = "auto";                // auto | reflect | particles
+        double artificial_viscosity = 0.02;        // alpha (wcsph)
+        double tolerance = 0.05;                   // % density error (dfsph)
+        double divergence_tolerance = 0.1;         // % per step (dfsph)
+        int min_iterations = 2;                    // dfsph
+        int max_iterations = 100;                  // dfsph
         std::string neighbour_search = "hash";
     } solver;
 
@@ -81,7 +94,10 @@ struct Scene {
 struct Derived {
     double h = 0;           // m, support radius
     double mass = 0;        // kg
-    double dt = 0;          // s
+    double dt = 0;          // s, the fixed step, or the adaptive rule's first step
+    bool fixed_dt = false;
+    std::string kernel;     // solver.kernel resolved
+    std::string walls;      // solver.walls resolved
     double sound_speed = 0; // m/s, sqrt(K / rho0)
     std::size_t particles = 0;
 };
@@ -109,6 +125,10 @@ Scene parse_scene(const std::string& text, const std::string& file_label,
 std::vector<KeyDoc> scene_keys();
 
 Derived derive(const Scene& scene);
+// solver.kernel's name (resolved, not "auto") as the core's enum.
+KernelKind kernel_kind(const std::string& name);
+// The solver.dt / cfl / dt_min / dt_max keys as the core's settings.
+TimeStepSettings time_step_settings(const Scene& scene);
 // The scene as resolved: all fields, derived values filled in; feeding it back
 // to parse_scene gives the same scene.
 nlohmann::json to_json(const Scene& scene);

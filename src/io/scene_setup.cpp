@@ -23,7 +23,15 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.rest_density = scene.material.rest_density;
     p.bulk_modulus = scene.material.bulk_modulus;
     p.viscosity = scene.material.viscosity;
-    p.dt = derived.dt;
+    p.spacing = scene.fluid.spacing;
+    p.artificial_viscosity = scene.solver.artificial_viscosity;
+    p.kernel = kernel_kind(derived.kernel);
+    p.integrator = scene.solver.integrator == "verlet" ? Integrator::verlet
+                                                       : Integrator::symplectic_euler;
+    p.walls = derived.walls == "particles" ? WallModel::particles : WallModel::reflect;
+    p.time_step = time_step_settings(scene);
+    p.pressure_solve = {scene.solver.tolerance, scene.solver.divergence_tolerance,
+                        scene.solver.min_iterations, scene.solver.max_iterations};
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     return p;
 }
@@ -68,8 +76,9 @@ EffectList<D> make_effects(const Scene& scene) {
 
 template <int D>
 Simulation<D> make_simulation(const Scene& scene, const Derived& derived) {
-    return Simulation<D>(make_params<D>(scene, derived), make_initial_state<D>(scene, derived),
-                         make_solver<D>(scene.solver.name),
+    const Params<D> params = make_params<D>(scene, derived);
+    return Simulation<D>(params, make_initial_state<D>(scene, derived),
+                         make_solver<D>(scene.solver.name, params),
                          make_neighbour_search<D>(scene.solver.neighbour_search),
                          make_effects<D>(scene));
 }

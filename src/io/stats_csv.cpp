@@ -19,10 +19,17 @@ StatsCsv::~StatsCsv() {
 
 void StatsCsv::write(const Snapshot& f) {
     const FrameStats& s = f.stats;
-    fmt::print(file_, "{},{:.9g},{},{:.6g},{},{:.9g},{:.9g},{:.6g},{:.6g},{:.9g},{:.9g},{:.3f}\n",
-               f.frame, f.time, f.steps, f.dt, s.particles, s.density_avg, s.density_max,
+    // dt columns: the mean, smallest and largest step since the previous
+    // frame; iterations: per step, averaged over the same steps.
+    const StepCounters& c = f.steps_taken;
+    const Real per_step = c.steps ? 1 / Real(c.steps) : 0;
+    fmt::print(file_,
+               "{},{:.9g},{},{:.6g},{},{:.9g},{:.9g},{:.6g},{:.6g},{:.9g},{:.9g},{:.6g},{:.6g},{:.4g},"
+               "{:.4g},{:.3f}\n",
+               f.frame, f.time, f.steps, c.dt_mean(), s.particles, s.density_avg, s.density_max,
                s.density_error_avg_pct, s.density_error_max_pct, s.kinetic_energy, s.max_speed,
-               f.wall_seconds);
+               c.steps ? c.dt_min : 0, c.dt_max, Real(c.pressure_iterations) * per_step,
+               Real(c.divergence_iterations) * per_step, f.wall_seconds);
     if (std::fflush(file_) != 0)
         throw std::runtime_error("cannot write " + path_.string() + " (disk full?)");
 }

@@ -2,6 +2,7 @@
 // Density by kernel summation over the neighbours, the particle itself included
 // (Müller et al. 2003, eq. 3; the seed's density):  rho_i = sum_j m W(|r_i - r_j|).
 
+#include "sph/boundary_particles.hpp"
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"
@@ -31,6 +32,24 @@ void compute_density(const Params<D>& params, const Kernel& kernel, const Neighb
             sum += kernel_value_squared(kernel,
                                         squared_length<D>(state.position[i] - state.position[j]));
         state.density[i] = params.mass * sum;
+    }
+}
+
+// The walls' share of the density: rho_i += sum_b rho0 V_b W_ib
+// (Akinci et al. 2012, eq. 6).
+template <int D, class Kernel>
+void add_boundary_density(const Params<D>& params, const Kernel& kernel,
+                          const BoundaryParticles<D>& boundary,
+                          const NeighbourList& boundary_neighbours, State<D>& state) {
+    const std::size_t n = state.size();
+    const auto xb = boundary.positions();
+    const auto volume = boundary.volumes();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        Real sum = 0;
+        for (std::uint32_t b : boundary_neighbours.of(i))
+            sum += volume[b] * kernel_value_squared(kernel, squared_length<D>(state.position[i] - xb[b]));
+        state.density[i] += params.rest_density * sum;
     }
 }
 

@@ -4,6 +4,8 @@
 #include "sph/params.hpp"
 #include "sph/state.hpp"
 
+#include <algorithm>
+
 namespace sph {
 
 // The seed's linear law, with K a true bulk modulus in Pa (K = rho dp/drho):
@@ -17,6 +19,26 @@ void compute_pressure_linear(const Params<D>& params, State<D>& state) {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
         state.pressure[i] = stiffness * (state.density[i] - params.rest_density);
+}
+
+// Tait's law as Becker & Teschner 2007 use it (eq. 7, after Monaghan 1994):
+//   p = B ((rho / rho0)^7 - 1),  B = K / 7,
+// so that dp/drho at rho0 is K / rho0 = c^2, the same sound speed as the
+// linear law. A particle with too few neighbours (at the free surface) has
+// a density below rho0; its pressure is clamped to zero instead of pulling
+// its neighbours in, which would clump particles at the surface (the tensile
+// instability).
+template <int D>
+void compute_pressure_tait(const Params<D>& params, State<D>& state) {
+    const std::size_t n = state.size();
+    const Real B = params.bulk_modulus / 7;
+    const Real inverse_rest = 1 / params.rest_density;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        const Real ratio = std::max(state.density[i] * inverse_rest, Real(1));
+        const Real r2 = ratio * ratio;
+        state.pressure[i] = B * (r2 * r2 * r2 * ratio - 1);
+    }
 }
 
 } // namespace sph

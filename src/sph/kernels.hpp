@@ -124,4 +124,38 @@ struct WendlandC2 {
     Vec<D> grad(const Vec<D>& x, Real r) const { return (dW(r) / r) * x; }
 };
 
+// The seed's pair of kernels as one kernel: poly6 values for the density,
+// spiky gradients for the forces (Müller et al. 2003, sec. 3.5). Its gradient
+// is not the gradient of its value; the seed chose them for what each does
+// best (poly6 needs no square root, spiky keeps repelling at r -> 0).
+template <int D>
+struct SeedKernel {
+    Poly6<D> value;
+    Spiky<D> gradient;
+    Real h;
+    explicit SeedKernel(Real support) : value(support), gradient(support), h(support) {}
+    Real W_r2(Real r2) const { return value.W_r2(r2); }
+    Real W(Real r) const { return value.W(r); }
+    Real dW(Real r) const { return gradient.dW(r); }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return gradient.grad(x, r); }
+};
+
+// Kernels a scene can choose (`solver.kernel`).
+enum class KernelKind { seed, cubic_spline, wendland_c2 };
+
+// Calls f with a default-constructed kernel object of the chosen kind, so a
+// caller instantiates its loops once per kernel type and picks at run time.
+template <int D, class F>
+decltype(auto) with_kernel(KernelKind kind, Real support, F&& f) {
+    switch (kind) {
+    case KernelKind::cubic_spline:
+        return f(CubicSpline<D>(support));
+    case KernelKind::wendland_c2:
+        return f(WendlandC2<D>(support));
+    case KernelKind::seed:
+        break;
+    }
+    return f(SeedKernel<D>(support));
+}
+
 } // namespace sph

@@ -2,19 +2,55 @@
 // Fixed parameters of one simulation, derived once from the scene and passed as
 // `const Params&` to every stage. Changing quantities live in State.
 
+#include "sph/kernels.hpp"
 #include "sph/vec.hpp"
 
+#include <cmath>
+
 namespace sph {
+
+enum class Integrator { symplectic_euler, verlet };
+
+// How the walls of the domain act on the fluid.
+enum class WallModel {
+    reflect,  // the seed's: put back inside and reflect the velocity
+    particles // boundary particles (Akinci et al. 2012) that take part in density and pressure
+};
+
+// Adaptive time step (time_step.hpp); a fixed step when `fixed` is set.
+struct TimeStepSettings {
+    bool fixed = false;
+    Real dt = 0;        // s, the fixed step
+    Real cfl = 0.4;     // fraction of a length scale crossed per step
+    Real dt_min = 1e-7; // s
+    Real dt_max = 5e-3; // s
+};
+
+// Pressure solve of the incompressible solvers (dfsph).
+struct PressureSolveSettings {
+    Real tolerance = 0.05;           // %: mean compression (rho - rho0) / rho0 allowed
+    Real divergence_tolerance = 0.1; // %: mean dt (D rho / Dt) / rho0 allowed
+    int min_iterations = 2;
+    int max_iterations = 100;
+};
 
 template <int D>
 struct Params {
     Real mass = 0;         // kg, of every particle
     Real h = 0;            // m, support radius of the kernels
+    Real spacing = 0;      // m, rest distance between particles
     Real rest_density = 0; // kg/m^3
     Real bulk_modulus = 0; // Pa, K in p = K (rho - rho0)
     Real viscosity = 0;    // Pa.s, dynamic viscosity mu
-    Real dt = 0;           // s, fixed time step
-    Box<D> domain;         // m, the walls particles reflect from
+    Real artificial_viscosity = 0; // alpha of Monaghan's artificial viscosity (wcsph)
+    Box<D> domain;         // m, the walls
+    KernelKind kernel = KernelKind::seed;
+    Integrator integrator = Integrator::symplectic_euler;
+    WallModel walls = WallModel::reflect;
+    TimeStepSettings time_step;
+    PressureSolveSettings pressure_solve;
+
+    Real sound_speed() const { return std::sqrt(bulk_modulus / rest_density); }
 };
 
 } // namespace sph

@@ -1,5 +1,7 @@
 #include "sph/simulation.hpp"
 
+#include <cmath>
+
 namespace sph {
 
 template <int D>
@@ -7,30 +9,85 @@ Simulation<D>::Simulation(const Params<D>& params, State<D> initial,
                           std::unique_ptr<Solver<D>> solver,
                           std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects)
     : params_(params), state_(std::move(initial)), solver_(std::move(solver)),
-      search_(std::move(search)), effects_(std::move(effects)) {}
+      search_(std::move(search)), effects_(std::move(effects)) {
+    if (params_.walls == WallModel::particles)
+        boundary_ = BoundaryParticles<D>::box_walls(params_.domain, params_.spacing, params_.h,
+                                                    params_.mass / params_.rest_density);
+}
 
 template <int D>
-void Simulation<D>::step() {
+Real Simulation<D>::next_dt() const {
+    if (params_.time_step.fixed)
+        return params_.time_step.dt;
+    return stable_time_step(params_, solver_->time_step_model(), measure_rates(state_));
+}
+
+template <int D>
+void Simulation<D>::step_by(Real dt) {
     auto ctx = context();
-    solver_->step(params_, state_, ctx);
+    const StepReport report = solver_->step(params_, dt, state_, ctx);
     ++steps_;
-    // Fixed dt: time from the step count, so no rounding accumulates.
-    time_ = Real(steps_) * params_.dt;
+    time_ += dt;
+    ++counters_.steps;
+    counters_.dt_min = std::min(counters_.dt_min, dt);
+    counters_.dt_max = std::max(counters_.dt_max, dt);
+    counters_.dt_sum += dt;
+    counters_.pressure_iterations += report.pressure_iterations;
+    counters_.divergence_iterations += report.divergence_iterations;
     check_finite(state_, steps_, time_);
 }
 
 template <int D>
-void Simulation<D>::advance_to(Real t) {
-    // A frame time reached up to rounding counts as reached.
-    const Real tolerance = 1e-9 * params_.dt;
-    while (time_ < t - tolerance)
+void Simulation<D>::step() {
+    step_by(next_dt());
+    // Fixed dt: time from the step count, so no rounding accumulates.
+    if (params_.time_step.fixed)
+        time_ = Real(steps_) * params_.time_step.dt;
+}
+
+template <int D>
+bool Simulation<D>::reached(Real t) const {
+    const Real tolerance =
+        1e-9 * (params_.time_step.fixed ? params_.time_step.dt : params_.time_step.dt_min);
+    return time_ >= t - tolerance;
+}
+
+template <int D>
+void Simulation<D>::step_toward(Real t) {
+    if (params_.time_step.fixed) {
         step();
+        return;
+    }
+    // Split what remains into equal steps no larger than the stable one, so
+    // the last step is not a sliver; the final one lands on t exactly.
+    const Real remaining = t - time_;
+    const Real dt = next_dt();
+    const Real count = std::ceil(remaining / dt - 1e-9);
+    if (count <= 1) {
+        step_by(remaining);
+        time_ = t;
+    } else {
+        step_by(remaining / count);
+    }
+}
+
+template <int D>
+void Simulation<D>::advance_to(Real t) {
+    while (!reached(t))
+        step_toward(t);
 }
 
 template <int D>
 void Simulation<D>::update_fields() {
     auto ctx = context();
     solver_->update_fields(params_, state_, ctx);
+}
+
+template <int D>
+StepCounters Simulation<D>::take_counters() {
+    StepCounters taken = counters_;
+    counters_ = {};
+    return taken;
 }
 
 template class Simulation<2>;

@@ -1,29 +1,42 @@
 #pragma once
 // One simulation: fixed parameters, the particle state, and the parts a step is
-// built from (solver, neighbour search, effects), all chosen once from the
-// scene. Simulation time advances in steps of params.dt, independent of the
-// frame rate; callers take frames whenever time crosses k / fps.
+// built from (solver, neighbour search, wall particles, effects), all chosen
+// once from the scene. Time advances by the adaptive step (time_step.hpp) or
+// a fixed one; callers take frames at times they choose, which the steps
+// land on exactly.
 
 #include "sph/checks.hpp"
 #include "sph/solvers/solver.hpp"
+#include "sph/step_counters.hpp"
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 namespace sph {
 
 template <int D>
 class Simulation {
   public:
+    // The wall particles are made here when params.walls asks for them.
     Simulation(const Params<D>& params, State<D> initial, std::unique_ptr<Solver<D>> solver,
                std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects);
 
-    // One time step, then the finite check (throws NonFiniteError).
+    // One step of the largest stable dt (or the fixed one), then the finite
+    // check (throws NonFiniteError).
     void step();
-    // Steps until time() >= t (up to rounding of the accumulated time).
+    // One step towards time t, shortened so that the steps land on t exactly.
+    void step_toward(Real t);
+    // Time t is reached (up to rounding).
+    bool reached(Real t) const;
+    // Steps until reached(t).
     void advance_to(Real t);
     // Density and pressure at the current positions, for output.
     void update_fields();
+    // The step the stability conditions allow now (the fixed one if fixed).
+    Real next_dt() const;
+    // Counters since the last call, then reset.
+    StepCounters take_counters();
 
     const Params<D>& params() const { return params_; }
     const State<D>& state() const { return state_; }
@@ -33,18 +46,26 @@ class Simulation {
     // Neighbours as the last step or update_fields() found them.
     const NeighbourList& neighbours() const { return neighbours_; }
     const EffectList<D>& effects() const { return effects_; }
+    // Null when the walls reflect.
+    const BoundaryParticles<D>* boundary() const { return boundary_ ? &*boundary_ : nullptr; }
     Real time() const { return time_; }
     std::uint64_t steps() const { return steps_; }
 
   private:
-    StepContext<D> context() { return {*search_, neighbours_, effects_}; }
+    StepContext<D> context() {
+        return {*search_, neighbours_, boundary(), boundary_neighbours_, effects_};
+    }
+    void step_by(Real dt);
 
     Params<D> params_;
     State<D> state_;
     std::unique_ptr<Solver<D>> solver_;
     std::unique_ptr<NeighbourSearch<D>> search_;
     EffectList<D> effects_;
+    std::optional<BoundaryParticles<D>> boundary_;
     NeighbourList neighbours_;
+    NeighbourList boundary_neighbours_;
+    StepCounters counters_;
     Real time_ = 0;
     std::uint64_t steps_ = 0;
 };

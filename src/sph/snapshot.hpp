@@ -4,6 +4,7 @@
 // The renderer and the writers never touch State or the solver.
 
 #include "sph/diagnostics.hpp"
+#include "sph/step_counters.hpp"
 #include "sph/state.hpp"
 
 #include <algorithm>
@@ -17,7 +18,7 @@ struct Snapshot {
     std::uint64_t frame = 0;
     std::uint64_t steps = 0; // since the start
     Real time = 0;           // s
-    Real dt = 0;             // s, the time step in use
+    StepCounters steps_taken; // since the previous frame: dt range, solver iterations
     Real wall_seconds = 0;   // since the start of the simulation
     FrameStats stats;
     // Particle fields, `dimension` values per particle for vectors.

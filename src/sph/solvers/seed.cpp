@@ -1,10 +1,9 @@
 #include "sph/solvers/seed.hpp"
 
-#include "sph/boundary.hpp"
 #include "sph/density.hpp"
 #include "sph/equation_of_state.hpp"
-#include "sph/integrate.hpp"
 #include "sph/kernels.hpp"
+#include "sph/pair_direction.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,60 +11,33 @@
 namespace sph {
 
 template <int D>
-void SeedSolver<D>::step(const Params<D>& params, State<D>& state, StepContext<D>& context) {
-    // 1. Neighbours closer than h (the seed's spatial hash by default).
-    context.search.find(state.position, params.h, context.neighbours);
-    // 2. Density by summation with the poly6 kernel; p = K (rho - rho0) / rho0.
-    compute_density(params, Poly6<D>(params.h), context.neighbours, state);
-    compute_pressure_linear(params, state);
-    // 3. Pressure and viscosity together, the seed's pair force f_ij, a = f / rho.
-    compute_seed_interaction(params, context.neighbours, state);
+SeedSolver<D>::SeedSolver(KernelKind kernel) : kernel_(kernel) {}
+
+template <int D>
+void SeedSolver<D>::compute_accelerations(const Params<D>& params, State<D>& state,
+                                          StepContext<D>& context) {
+    with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
+        // 1. Neighbours closer than h (the seed's spatial hash by default).
+        context.find_neighbours(state.position, params.h);
+        // 2. Density by summation (the seed's poly6); p = K (rho - rho0) / rho0.
+        compute_density(params, kernel, context.neighbours, state);
+        compute_pressure_linear(params, state);
+        // 3. Pressure and viscosity together, the seed's pair force f_ij, a = f / rho.
+        compute_seed_interaction(params, kernel, context.neighbours, state);
+    });
     // 4. Body forces and other effects the scene names (gravity, ...).
     apply_effects(context.effects, params, context.neighbours, state);
-    // 5. Symplectic Euler.
-    integrate_symplectic_euler(params, state);
-    // 6. Walls: put back inside and reflect.
-    reflect_at_box(params, state);
 }
 
 template <int D>
 void SeedSolver<D>::update_fields(const Params<D>& params, State<D>& state,
                                   StepContext<D>& context) {
-    context.search.find(state.position, params.h, context.neighbours);
-    compute_density(params, Poly6<D>(params.h), context.neighbours, state);
-    compute_pressure_linear(params, state);
+    with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
+        context.find_neighbours(state.position, params.h);
+        compute_density(params, kernel, context.neighbours, state);
+        compute_pressure_linear(params, state);
+    });
 }
-
-namespace {
-
-// A unit vector fixed by the pair's ids, for two particles at the same place:
-// the pressure force keeps its finite magnitude (the spiky gradient does not
-// vanish at r = 0) and pushes them apart along a direction that is the same
-// on every run and opposite for the other particle.
-template <int D>
-Vec<D> coincident_direction(std::uint32_t id_a, std::uint32_t id_b) {
-    // splitmix64 (Steele, Lea & Flood 2014) of the ordered pair.
-    auto mix = [](std::uint64_t z) {
-        z += 0x9e3779b97f4a7c15ull;
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    };
-    const std::uint64_t a = mix((std::uint64_t(id_a) << 32) | id_b);
-    const std::uint64_t b = mix(a);
-    const Real u = Real(a >> 11) * 0x1.0p-53; // uniform in [0, 1)
-    const Real v = Real(b >> 11) * 0x1.0p-53;
-    const Real angle = 2 * detail::pi * u;
-    if constexpr (D == 2) {
-        return {std::cos(angle), std::sin(angle)};
-    } else {
-        const Real z = 2 * v - 1;
-        const Real ring = std::sqrt(1 - z * z);
-        return {ring * std::cos(angle), ring * std::sin(angle), z};
-    }
-}
-
-} // namespace
 
 // The seed's interaction force (MODEL.md), written with the kernels it comes
 // from (Müller et al. 2003, eqs. 10, 14, 21, 22):
@@ -88,28 +60,21 @@ Vec<D> coincident_direction(std::uint32_t id_a, std::uint32_t id_b) {
 namespace {
 
 // The pair term with its kernels built once per stage, not once per pair.
-template <int D>
+// Another kernel than the seed's replaces spiky's gradient by its own.
+template <int D, class Kernel>
 struct SeedPairTerm {
     const Params<D>& params;
-    Spiky<D> spiky;
+    const Kernel& kernel;
     ViscosityLaplacian<D> viscosity;
 
-    explicit SeedPairTerm(const Params<D>& p) : params(p), spiky(p.h), viscosity(p.h) {}
+    SeedPairTerm(const Params<D>& p, const Kernel& k) : params(p), kernel(k), viscosity(p.h) {}
 
     Vec<D> operator()(const State<D>& state, std::size_t i, std::size_t j) const {
         const Vec<D> r_ij = state.position[i] - state.position[j];
         const Real r = std::sqrt(squared_length<D>(r_ij));
-        Vec<D> direction;
-        if (r > 1e-12 * params.h) {
-            direction = r_ij / r;
-        } else {
-            direction = coincident_direction<D>(std::min(state.id[i], state.id[j]),
-                                                std::max(state.id[i], state.id[j]));
-            if (state.id[i] > state.id[j])
-                direction = -direction;
-        }
+        const Vec<D> direction = pair_direction(state, i, j, r_ij, r, params.h);
         const Real mean_pressure = Real(0.5) * (state.pressure[i] + state.pressure[j]);
-        const Vec<D> pressure_term = -mean_pressure * spiky.dW(r) * direction;
+        const Vec<D> pressure_term = -mean_pressure * kernel.dW(r) * direction;
         const Vec<D> viscous_term =
             -params.viscosity * viscosity.laplacian(r) * (state.velocity[i] - state.velocity[j]);
         return (params.mass / (state.density[i] * state.density[j])) *
@@ -122,7 +87,8 @@ struct SeedPairTerm {
 template <int D>
 Vec<D> seed_pair_acceleration(const Params<D>& params, const State<D>& state, std::size_t i,
                               std::size_t j) {
-    return SeedPairTerm<D>(params)(state, i, j);
+    const SeedKernel<D> kernel(params.h);
+    return SeedPairTerm<D, SeedKernel<D>>(params, kernel)(state, i, j);
 }
 
 template <int D>
@@ -134,11 +100,11 @@ Vec<D> seed_pair_force(const Params<D>& params, const State<D>& state, std::size
 // Gather-style: each particle sums its own side of every pair, so threads
 // never write to the same particle and the sum is the same for any thread
 // count; the seed's once-per-pair evaluation gives the same values.
-template <int D>
-void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
-                              State<D>& state) {
+template <int D, class Kernel>
+void compute_seed_interaction(const Params<D>& params, const Kernel& kernel,
+                              const NeighbourList& neighbours, State<D>& state) {
     const std::size_t n = state.size();
-    const SeedPairTerm<D> term(params);
+    const SeedPairTerm<D, Kernel> term(params, kernel);
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         Vec<D> acceleration(0);
@@ -150,6 +116,12 @@ void compute_seed_interaction(const Params<D>& params, const NeighbourList& neig
 
 template class SeedSolver<2>;
 template class SeedSolver<3>;
+template <int D>
+void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
+                              State<D>& state) {
+    compute_seed_interaction(params, SeedKernel<D>(params.h), neighbours, state);
+}
+
 template void compute_seed_interaction<2>(const Params<2>&, const NeighbourList&, State<2>&);
 template void compute_seed_interaction<3>(const Params<3>&, const NeighbourList&, State<3>&);
 template Vec<2> seed_pair_force<2>(const Params<2>&, const State<2>&, std::size_t, std::size_t);

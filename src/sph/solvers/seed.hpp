@@ -2,16 +2,27 @@
 // The `seed` solver: the model of the report sphclip grew from
 // (../shared/seed/MODEL.md), kept faithful so results can be compared with it.
 
-#include "sph/solvers/solver.hpp"
+#include "sph/solvers/explicit_solver.hpp"
 
 namespace sph {
 
+// Its step (compute_accelerations, then the integrator of explicit_solver.hpp):
+// neighbours, density, linear pressure, the seed's pair force, effects. With
+// the seed's kernel and symplectic Euler it is the report's model exactly;
+// another kernel replaces poly6 and spiky's gradient by its own.
 template <int D>
-class SeedSolver final : public Solver<D> {
+class SeedSolver final : public ExplicitSolver<D> {
   public:
+    explicit SeedSolver(KernelKind kernel = KernelKind::seed);
     std::string_view name() const override { return "seed"; }
-    void step(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
     void update_fields(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
+
+  protected:
+    void compute_accelerations(const Params<D>& params, State<D>& state,
+                               StepContext<D>& context) override;
+
+  private:
+    KernelKind kernel_;
 };
 
 // The seed's interaction force summed for every particle and divided by its

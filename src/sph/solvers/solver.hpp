@@ -2,8 +2,10 @@
 // The interface every solver implements. A solver's step() reads like its
 // algorithm: a named call per stage, the stages themselves in their own files.
 
+#include "sph/boundary_particles.hpp"
 #include "sph/effects/effect.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
+#include "sph/time_step.hpp"
 
 #include <memory>
 #include <string>
@@ -13,12 +15,28 @@
 namespace sph {
 
 // What a step needs besides parameters and state: the neighbour search and the
-// lists it fills (reused every step), and the scene's effects.
+// lists it fills (reused every step), the wall particles when the walls are
+// made of particles, and the scene's effects.
 template <int D>
 struct StepContext {
     NeighbourSearch<D>& search;
     NeighbourList& neighbours;
+    const BoundaryParticles<D>* boundary; // null: walls reflect (the seed's)
+    NeighbourList& boundary_neighbours;   // fluid -> boundary particles
     const EffectList<D>& effects;
+
+    // Fills both lists for the current positions.
+    void find_neighbours(std::span<const Vec<D>> positions, Real h) {
+        search.find(positions, h, neighbours);
+        if (boundary)
+            boundary->find_neighbours(positions, boundary_neighbours);
+    }
+};
+
+// What one step did, for stats.csv.
+struct StepReport {
+    int pressure_iterations = 0;   // dfsph: density solve
+    int divergence_iterations = 0; // dfsph: divergence solve
 };
 
 template <int D>
@@ -26,8 +44,10 @@ class Solver {
   public:
     virtual ~Solver() = default;
     virtual std::string_view name() const = 0;
-    // Advances the state by params.dt.
-    virtual void step(const Params<D>& params, State<D>& state, StepContext<D>& context) = 0;
+    virtual TimeStepModel time_step_model() const = 0;
+    // Advances the state by dt.
+    virtual StepReport step(const Params<D>& params, Real dt, State<D>& state,
+                            StepContext<D>& context) = 0;
     // Density and pressure at the current positions, as the next step would
     // compute them; used for the frame outputs. Moves nothing.
     virtual void update_fields(const Params<D>& params, State<D>& state,
@@ -38,6 +58,6 @@ class Solver {
 std::vector<std::string> solver_names();
 
 template <int D>
-std::unique_ptr<Solver<D>> make_solver(std::string_view name);
+std::unique_ptr<Solver<D>> make_solver(std::string_view name, const Params<D>& params);
 
 } // namespace sph

@@ -1,0 +1,48 @@
+#pragma once
+// Pressure acceleration of the weakly compressible solvers, in the symmetric
+// form that conserves momentum (Monaghan 1992, eq. 3.3; Becker & Teschner
+// 2007, eq. 6):
+//   a_i = - sum_j m (p_i / rho_i^2 + p_j / rho_j^2) grad W_ij
+// and from the wall particles, whose pressure is taken as the fluid
+// particle's own (Akinci et al. 2012, eq. 10):
+//   a_i -= sum_b rho0 V_b (p_i / rho_i^2) grad W_ib
+// Overwrites state.acceleration: it is the first force of the step.
+
+#include "sph/boundary_particles.hpp"
+#include "sph/pair_direction.hpp"
+#include "sph/params.hpp"
+
+namespace sph {
+
+template <int D, class Kernel>
+void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel,
+                                   const NeighbourList& neighbours,
+                                   const BoundaryParticles<D>* boundary,
+                                   const NeighbourList& boundary_neighbours, State<D>& state) {
+    const std::size_t n = state.size();
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+        const Real pi_over_rho2 = state.pressure[i] / (state.density[i] * state.density[i]);
+        Vec<D> a(0);
+        for (std::uint32_t j : neighbours.of(i)) {
+            const Vec<D> x_ij = state.position[i] - state.position[j];
+            const Real r = std::sqrt(squared_length<D>(x_ij));
+            const Real pj_over_rho2 = state.pressure[j] / (state.density[j] * state.density[j]);
+            a -= (params.mass * (pi_over_rho2 + pj_over_rho2)) *
+                 pair_gradient(kernel, state, i, j, x_ij, r);
+        }
+        if (boundary) {
+            const auto xb = boundary->positions();
+            const auto volume = boundary->volumes();
+            for (std::uint32_t b : boundary_neighbours.of(i)) {
+                const Vec<D> x_ib = state.position[i] - xb[b];
+                const Real r = std::sqrt(squared_length<D>(x_ib));
+                a -= (params.rest_density * volume[b] * pi_over_rho2) *
+                     boundary_gradient(kernel, x_ib, r);
+            }
+        }
+        state.acceleration[i] = a;
+    }
+}
+
+} // namespace sph

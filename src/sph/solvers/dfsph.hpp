@@ -1,0 +1,57 @@
+#pragma once
+// `dfsph`: divergence-free SPH (Bender & Koschier 2015, "Divergence-free
+// smoothed particle hydrodynamics"; 2017, "Divergence-Free SPH for
+// Incompressible and Viscous Fluids", algorithms 1-3). Two pressure solves per
+// step keep the fluid incompressible with large time steps:
+//   - the divergence solve makes the velocity field divergence-free
+//     (D rho / Dt = 0), to solver.divergence_tolerance;
+//   - the density solve corrects the predicted density rho* = rho + dt D rho / Dt
+//     back to rho0, to solver.tolerance (mean compression, percent).
+// Both solve for a per-particle stiffness by Jacobi-like iterations with the
+// factor alpha_i = 1 / (|sum_j m grad W_ij|^2 + sum_j |m grad W_ij|^2)
+// (Bender & Koschier 2017, eq. 9, with the density folded in). Walls are
+// boundary particles (Akinci et al. 2012) that contribute to rho and to
+// D rho / Dt, never move, and push back with the fluid particle's own
+// stiffness.
+
+#include "sph/solvers/solver.hpp"
+
+#include <vector>
+
+namespace sph {
+
+template <int D>
+class DfsphSolver final : public Solver<D> {
+  public:
+    explicit DfsphSolver(KernelKind kernel) : kernel_(kernel) {}
+    std::string_view name() const override { return "dfsph"; }
+    TimeStepModel time_step_model() const override { return {.carries_sound = false}; }
+    StepReport step(const Params<D>& params, Real dt, State<D>& state,
+                    StepContext<D>& context) override;
+    void update_fields(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
+
+    // Mean compression, in percent, the last density solve ended with.
+    Real last_density_error_pct() const { return last_density_error_pct_; }
+
+  private:
+    enum class Target { divergence, density };
+    template <class Kernel>
+    void prepare(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
+                 State<D>& state);
+    int solve(const Params<D>& params, Real dt, Target target, const StepContext<D>& context,
+              State<D>& state);
+
+    KernelKind kernel_;
+    Real last_density_error_pct_ = 0;
+    // Arrays this solver alone needs, sized to the particles; they live here,
+    // not in State.
+    // (units in dfsph.cpp)
+    std::vector<Real> factor_;          // 1 / S_i
+    std::vector<Real> stiffness_;       // s_i of this iteration
+    std::vector<Real> stiffness_sum_;   // s_i summed over the density solve
+    std::vector<Real> source_;          // the compression rate to remove
+    std::vector<Vec<D>> gradient_;      // m grad W_ij per fluid pair (neighbour list order)
+    std::vector<Vec<D>> wall_gradient_; // rho0 V_b grad W_ib per wall pair
+};
+
+} // namespace sph

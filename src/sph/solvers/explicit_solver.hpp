@@ -1,0 +1,51 @@
+#pragma once
+// What the explicit solvers (seed, wcsph) share: they compute accelerations
+// from the state, and an integrator chosen by the scene moves the particles.
+//   symplectic Euler (the seed's, first order):  a(x, v); v += dt a; x += dt v
+//   velocity Verlet / leapfrog kick-drift-kick (second order, Verlet 1967):
+//     v += dt/2 a;  x += dt v;  a(x, v);  v += dt/2 a
+// Verlet's second half-kick uses the accelerations at the new positions, which
+// the next step's first half-kick reuses: one force evaluation per step.
+
+#include "sph/boundary.hpp"
+#include "sph/integrate.hpp"
+#include "sph/solvers/solver.hpp"
+
+namespace sph {
+
+template <int D>
+class ExplicitSolver : public Solver<D> {
+  public:
+    TimeStepModel time_step_model() const override { return {.carries_sound = true}; }
+
+    StepReport step(const Params<D>& params, Real dt, State<D>& state,
+                    StepContext<D>& context) override {
+        if (params.integrator == Integrator::verlet) {
+            if (!accelerations_current_ || state.size() != accelerations_for_)
+                compute_accelerations(params, state, context);
+            kick(dt / 2, state);
+            drift(dt, state);
+            reflect_at_box(params, state);
+            compute_accelerations(params, state, context);
+            kick(dt / 2, state);
+            accelerations_current_ = true;
+            accelerations_for_ = state.size();
+        } else {
+            compute_accelerations(params, state, context);
+            integrate_symplectic_euler(dt, state);
+            reflect_at_box(params, state);
+        }
+        return {};
+    }
+
+  protected:
+    // state.acceleration = every force of the model at the current state.
+    virtual void compute_accelerations(const Params<D>& params, State<D>& state,
+                                       StepContext<D>& context) = 0;
+
+  private:
+    bool accelerations_current_ = false;
+    std::size_t accelerations_for_ = 0;
+};
+
+} // namespace sph

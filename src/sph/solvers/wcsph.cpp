@@ -1,0 +1,57 @@
+#include "sph/solvers/wcsph.hpp"
+
+#include "sph/density.hpp"
+#include "sph/equation_of_state.hpp"
+#include "sph/pressure_acceleration.hpp"
+#include "sph/viscosity.hpp"
+
+namespace sph {
+
+namespace {
+
+// Density by summation over fluid and wall particles, then Tait's pressure.
+template <int D, class Kernel>
+void density_and_pressure(const Params<D>& params, const Kernel& kernel,
+                          StepContext<D>& context, State<D>& state) {
+    context.find_neighbours(state.position, params.h);
+    compute_density(params, kernel, context.neighbours, state);
+    if (context.boundary)
+        add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours,
+                             state);
+    compute_pressure_tait(params, state);
+}
+
+} // namespace
+
+template <int D>
+void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& state,
+                                           StepContext<D>& context) {
+    with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
+        // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
+        density_and_pressure(params, kernel, context, state);
+        // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2) grad W, walls included.
+        compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
+                                      context.boundary_neighbours, state);
+        // 3. Viscosity: Monaghan's artificial term, and the fluid's own (Morris).
+        if (params.artificial_viscosity > 0)
+            add_artificial_viscosity(params, kernel, context.neighbours, state);
+        if (params.viscosity > 0)
+            add_laminar_viscosity(params, kernel, context.neighbours, context.boundary,
+                                  context.boundary_neighbours, state);
+    });
+    // 4. Body forces and other effects the scene names.
+    apply_effects(context.effects, params, context.neighbours, state);
+}
+
+template <int D>
+void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
+                                   StepContext<D>& context) {
+    with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
+        density_and_pressure(params, kernel, context, state);
+    });
+}
+
+template class WcsphSolver<2>;
+template class WcsphSolver<3>;
+
+} // namespace sph

@@ -1,0 +1,27 @@
+#pragma once
+// `wcsph`: weakly compressible SPH after Becker & Teschner 2007, "Weakly
+// compressible SPH for free surface flows": the Tait equation of state, the
+// symmetric pressure force, Monaghan's artificial viscosity, and walls of
+// boundary particles (Akinci et al. 2012). The stiffness K (material.bulk_modulus)
+// sets the sound speed c = sqrt(K / rho0); density errors scale like (v / c)^2.
+
+#include "sph/solvers/explicit_solver.hpp"
+
+namespace sph {
+
+template <int D>
+class WcsphSolver final : public ExplicitSolver<D> {
+  public:
+    explicit WcsphSolver(KernelKind kernel) : kernel_(kernel) {}
+    std::string_view name() const override { return "wcsph"; }
+    void update_fields(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
+
+  protected:
+    void compute_accelerations(const Params<D>& params, State<D>& state,
+                               StepContext<D>& context) override;
+
+  private:
+    KernelKind kernel_;
+};
+
+} // namespace sph

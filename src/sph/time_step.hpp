@@ -1,0 +1,53 @@
+#pragma once
+// The adaptive time step: the largest step the stability conditions allow,
+// bounded by solver.dt_min and solver.dt_max.
+//   - Courant-Friedrichs-Lewy: a signal crosses at most cfl of a length L per
+//     step. Weakly compressible solvers carry sound, so dt <= cfl h / (c + v_max)
+//     (Monaghan 1992, sec. 10.3); incompressible ones only move particles, so
+//     dt <= cfl d / v_max with d the particle spacing (Bender & Koschier 2017,
+//     sec. 5, with their 0.4).
+//   - Viscous diffusion: dt <= 0.125 h^2 / nu (Morris et al. 1997, eq. 11).
+//   - Forces: dt <= 0.25 sqrt(h / a_max) (Monaghan 1992), with the
+//     accelerations of the last step.
+
+#include "sph/params.hpp"
+#include "sph/state.hpp"
+
+namespace sph {
+
+// What a solver tells the rule about itself.
+struct TimeStepModel {
+    bool carries_sound = true; // weakly compressible: the sound speed limits dt
+};
+
+// Largest |v| and |a| over the particles.
+struct ExtremeRates {
+    Real max_speed = 0;
+    Real max_acceleration = 0;
+};
+
+template <int D>
+ExtremeRates measure_rates(const State<D>& state);
+
+// The fluid's figures the conditions need.
+struct TimeStepScales {
+    Real h = 0;            // m, support radius
+    Real spacing = 0;      // m
+    Real sound_speed = 0;  // m/s
+    Real rest_density = 0; // kg/m^3
+    Real viscosity = 0;    // Pa.s
+};
+
+// The step the conditions above allow for the given rates, within [dt_min, dt_max].
+Real stable_time_step(const TimeStepSettings& settings, const TimeStepScales& scales,
+                      TimeStepModel model, ExtremeRates rates);
+
+template <int D>
+Real stable_time_step(const Params<D>& params, TimeStepModel model, ExtremeRates rates) {
+    return stable_time_step(params.time_step,
+                            {params.h, params.spacing, params.sound_speed(), params.rest_density,
+                             params.viscosity},
+                            model, rates);
+}
+
+} // namespace sph

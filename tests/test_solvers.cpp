@@ -1,0 +1,282 @@
+// The modern solvers and what they are built from: Tait's law, wall
+// particles, the adaptive time step, the integrators, and the dfsph pressure
+// solves.
+#include "io/scene.hpp"
+#include "io/scene_setup.hpp"
+#include "sph/equation_of_state.hpp"
+#include "sph/neighbours/all_pairs.hpp"
+#include "sph/solvers/dfsph.hpp"
+#include "sph/solvers/explicit_solver.hpp"
+#include "sph/solvers/wcsph.hpp"
+#include "sph/time_step.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+
+using namespace sph;
+
+namespace {
+
+// A 2D or 3D block of fluid at rest filling the bottom of a closed box.
+Scene tank(int dimension, const std::string& solver, const std::string& kernel,
+           std::vector<Override> extra = {}) {
+    std::vector<Override> o{{"dimension", std::to_string(dimension)},
+                            {"solver.name", solver},
+                            {"solver.kernel", kernel},
+                            {"fluid.spacing", "0.01"},
+                            {"domain.min", dimension == 2 ? "[0,0]" : "[0,0,0]"},
+                            {"domain.max", dimension == 2 ? "[0.1,0.1]" : "[0.06,0.06,0.06]"},
+                            {"fluid.blocks.0.min", dimension == 2 ? "[0,0]" : "[0,0,0]"},
+                            {"fluid.blocks.0.max", dimension == 2 ? "[0.1,0.05]" : "[0.06,0.03,0.06]"},
+                            {"fluid.smoothing_ratio", "2"}};
+    o.insert(o.end(), extra.begin(), extra.end());
+    return default_scene(o);
+}
+
+// Over the particles deeper than h below the free surface at y = top (the
+// ones above lack neighbours on the air side).
+template <int D>
+Real max_relative_density_error(const Simulation<D>& sim, Real top) {
+    Real worst = 0;
+    const auto& s = sim.state();
+    std::size_t checked = 0;
+    for (std::size_t i = 0; i < s.size(); ++i)
+        if (s.position[i].y < top - sim.params().h) {
+            worst = std::max(worst, std::abs(s.density[i] / sim.params().rest_density - 1));
+            ++checked;
+        }
+    REQUIRE(checked >= s.size() / 4);
+    return worst;
+}
+
+} // namespace
+
+TEST_CASE("Tait's law: zero at rest, sound speed sqrt(K / rho0), no tension", "[solvers]") {
+    Params<2> p;
+    p.rest_density = 1000;
+    p.bulk_modulus = 2e5;
+    State<2> s;
+    s.resize(3);
+    s.density = {1000, 1001, 900};
+    compute_pressure_tait(p, s);
+    CHECK(s.pressure[0] == 0);
+    // dp/drho at rho0 = 7 B / rho0 = K / rho0 = c^2, to first order in the step.
+    CHECK(s.pressure[1] / 1.0 == Approx(p.bulk_modulus / p.rest_density).epsilon(5e-3));
+    CHECK(s.pressure[2] == 0);
+}
+
+TEST_CASE("wall particles give a fluid at rest exactly the rest density", "[solvers]") {
+    // Every particle, the ones beside walls and in corners included, sees a
+    // full lattice: fluid on one side, wall particles on the other.
+    for (int dimension : {2, 3})
+        for (const char* kernel : {"seed", "cubic_spline", "wendland_c2"})
+            for (const char* solver : {"wcsph", "dfsph"}) {
+                INFO(dimension << "D, " << kernel << ", " << solver);
+                const Scene scene = tank(dimension, solver, kernel);
+                if (dimension == 2) {
+                    auto sim = make_simulation<2>(scene);
+                    REQUIRE(sim.boundary() != nullptr);
+                    sim.update_fields();
+                    CHECK(max_relative_density_error(sim, 0.05) < 1e-9);
+                } else {
+                    auto sim = make_simulation<3>(scene);
+                    sim.update_fields();
+                    CHECK(max_relative_density_error(sim, 0.03) < 1e-9);
+                }
+            }
+}
+
+TEST_CASE("the walls of a box are sampled as deep as the kernel reaches", "[solvers]") {
+    const Box<2> box{{0, 0}, {0.1, 0.05}};
+    const auto walls = BoundaryParticles<2>::box_walls(box, 0.01, 0.025, 1e-4);
+    // 10 x 5 sites inside; 3 layers (ceil(2.5)) around: 16 x 11 - 10 x 5.
+    CHECK(walls.size() == 16 * 11 - 10 * 5);
+    for (const auto& x : walls.positions())
+        CHECK((x.x < 0 || x.x > 0.1 || x.y < 0 || x.y > 0.05));
+    const auto walls_3d = BoundaryParticles<3>::box_walls({{0, 0, 0}, {0.05, 0.04, 0.03}}, 0.01,
+                                                          0.015, 1e-6);
+    CHECK(walls_3d.size() == 9 * 8 * 7 - 5 * 4 * 3);
+    // A point beside the wall finds exactly the wall particles within h.
+    NeighbourList list;
+    const std::vector<Vec<2>> query{{0.005, 0.005}};
+    walls.find_neighbours(query, list);
+    std::size_t expected = 0;
+    for (const auto& x : walls.positions())
+        expected += squared_length<2>(x - query[0]) < 0.025 * 0.025;
+    CHECK(list.of(0).size() == expected);
+    CHECK(expected > 0);
+}
+
+TEST_CASE("the adaptive step follows the CFL, viscous and force conditions", "[solvers]") {
+    TimeStepSettings settings;
+    settings.cfl = 0.5;
+    settings.dt_min = 1e-9;
+    settings.dt_max = 1;
+    TimeStepScales scales{.h = 0.02, .spacing = 0.01, .sound_speed = 10, .rest_density = 1000,
+                          .viscosity = 0};
+    // Weakly compressible: the sound crosses cfl h per step.
+    CHECK(stable_time_step(settings, scales, {.carries_sound = true}, {2, 0}) ==
+          Approx(0.5 * 0.02 / 12));
+    // Incompressible: particles cross cfl spacing per step; at rest, dt_max.
+    CHECK(stable_time_step(settings, scales, {.carries_sound = false}, {2, 0}) ==
+          Approx(0.5 * 0.01 / 2));
+    CHECK(stable_time_step(settings, scales, {.carries_sound = false}, {0, 0}) == 1);
+    // Forces: 0.25 sqrt(h / a).
+    CHECK(stable_time_step(settings, scales, {.carries_sound = false}, {0, 10}) ==
+          Approx(0.25 * std::sqrt(0.02 / 10)));
+    // Viscosity: 0.125 h^2 rho0 / mu.
+    scales.viscosity = 1000;
+    CHECK(stable_time_step(settings, scales, {.carries_sound = false}, {0, 0}) ==
+          Approx(0.125 * 0.02 * 0.02));
+    // Bounds.
+    settings.dt_min = 1e-3;
+    CHECK(stable_time_step(settings, scales, {.carries_sound = true}, {1e6, 0}) == 1e-3);
+    settings.dt_max = 1e-5;
+    settings.dt_min = 1e-9;
+    CHECK(stable_time_step(settings, scales, {.carries_sound = false}, {0, 0}) == 1e-5);
+}
+
+TEST_CASE("adaptive steps land exactly on the frame times", "[solvers]") {
+    for (const char* solver : {"seed", "wcsph", "dfsph"}) {
+        INFO(solver);
+        auto sim = make_simulation<2>(tank(2, solver, "auto", {{"solver.dt_max", "7e-4"}}));
+        for (int k = 1; k <= 4; ++k) {
+            const Real t = k / 30.0;
+            sim.advance_to(t);
+            CHECK(sim.time() == t);
+        }
+        const StepCounters c = sim.take_counters();
+        CHECK(c.steps == sim.steps());
+        CHECK(c.dt_max <= 7e-4 * (1 + 1e-12));
+        CHECK(c.dt_min > 0);
+        CHECK(c.dt_sum == Approx(4 / 30.0));
+        CHECK(sim.take_counters().steps == 0);
+    }
+}
+
+namespace {
+
+// A harmonic oscillator, a = -x, through the explicit solvers' integrators.
+class Spring final : public ExplicitSolver<1 + 1> {
+  public:
+    std::string_view name() const override { return "spring"; }
+    void update_fields(const Params<2>&, State<2>&, StepContext<2>&) override {}
+
+  protected:
+    void compute_accelerations(const Params<2>&, State<2>& state, StepContext<2>&) override {
+        for (std::size_t i = 0; i < state.size(); ++i)
+            state.acceleration[i] = -state.position[i];
+    }
+};
+
+Real spring_error(Integrator integrator, int steps) {
+    Params<2> p;
+    p.integrator = integrator;
+    p.domain = {Vec<2>(-10), Vec<2>(10)};
+    State<2> s;
+    s.resize(1);
+    s.position[0] = {1, 0};
+    s.velocity[0] = {0, 0};
+    AllPairs<2> search;
+    NeighbourList list, walls;
+    EffectList<2> none;
+    StepContext<2> context{search, list, nullptr, walls, none};
+    Spring spring;
+    const Real dt = 1.0 / steps;
+    for (int k = 0; k < steps; ++k)
+        spring.step(p, dt, s, context);
+    return std::abs(s.position[0].x - std::cos(1.0));
+}
+
+} // namespace
+
+TEST_CASE("symplectic Euler converges to first order, Verlet to second", "[solvers]") {
+    const Real euler_ratio = spring_error(Integrator::symplectic_euler, 100) /
+                             spring_error(Integrator::symplectic_euler, 200);
+    const Real verlet_ratio =
+        spring_error(Integrator::verlet, 100) / spring_error(Integrator::verlet, 200);
+    CHECK(euler_ratio == Approx(2).epsilon(0.1));
+    CHECK(verlet_ratio == Approx(4).epsilon(0.1));
+    CHECK(spring_error(Integrator::verlet, 100) < 1e-4);
+}
+
+TEST_CASE("dfsph's density solve brings the error below its tolerance", "[solvers]") {
+    // A compressed start (spacing 10% below the lattice's) and a step long
+    // enough for gravity to compress it further.
+    for (const char* tolerance : {"0.1", "0.01"}) {
+        INFO("tolerance " << tolerance << " %");
+        auto scene = tank(2, "dfsph", "cubic_spline",
+                          {{"solver.tolerance", tolerance}, {"solver.max_iterations", "1000"}});
+        const Derived derived = derive(scene);
+        auto sim = make_simulation<2>(scene, derived);
+        for (auto& x : sim.state().position)
+            x *= 0.9;
+        sim.step_toward(0.002);
+        const auto& solver = dynamic_cast<const DfsphSolver<2>&>(sim.solver());
+        CHECK(solver.last_density_error_pct() <= std::stod(tolerance));
+        const StepCounters c = sim.take_counters();
+        CHECK(c.pressure_iterations >= 2);
+        CHECK(c.pressure_iterations < 1000);
+    }
+}
+
+TEST_CASE("wcsph conserves momentum without walls and gravity", "[solvers]") {
+    auto scene = tank(2, "wcsph", "wendland_c2",
+                      {{"effects", "{}"}, {"solver.walls", "reflect"}, {"domain.max", "[10,10]"},
+                       {"fluid.blocks.0.min", "[5,5]"}, {"fluid.blocks.0.max", "[5.1,5.05]"},
+                       {"fluid.blocks.0.velocity", "[0.3,-0.1]"}});
+    auto sim = make_simulation<2>(scene);
+    // Stir it so that pressure and viscosity work.
+    for (std::size_t i = 0; i < sim.state().size(); ++i)
+        sim.state().velocity[i] += Vec<2>(0.2 * std::sin(3.0 * i), 0.2 * std::cos(5.0 * i));
+    Vec<2> before(0);
+    for (const auto& v : sim.state().velocity)
+        before += v;
+    for (int k = 0; k < 100; ++k)
+        sim.step();
+    Vec<2> after(0);
+    for (const auto& v : sim.state().velocity)
+        after += v;
+    CHECK(after.x == Approx(before.x).margin(1e-9));
+    CHECK(after.y == Approx(before.y).margin(1e-9));
+}
+
+TEST_CASE("every solver keeps a dam break inside its walls", "[solvers]") {
+    for (const char* solver : {"seed", "wcsph", "dfsph"})
+        for (const char* integrator : {"symplectic_euler", "verlet"}) {
+            if (std::string(solver) == "dfsph" && std::string(integrator) == "verlet")
+                continue;
+            INFO(solver << " " << integrator);
+            auto sim = make_simulation<2>(default_scene({{"fluid.spacing", "0.005715"},
+                                                         {"solver.name", solver},
+                                                         {"solver.integrator", integrator}}));
+            const auto energy = [&sim] {
+                Real e = 0;
+                for (std::size_t i = 0; i < sim.state().size(); ++i)
+                    e += sim.params().mass * (9.81 * sim.state().position[i].y +
+                                              0.5 * squared_length<2>(sim.state().velocity[i]));
+                return e;
+            };
+            const Real start = energy();
+            sim.advance_to(0.3);
+            // Closed and damped: no energy from nowhere. Not for the seed: at
+            // this coarse resolution (10 x 20 particles) its linear law's
+            // tension at the free surface feeds kinetic energy (measured: 4x
+            // the start at t = 0.3 s, with any dt), one reason to prefer the
+            // modern solvers.
+            if (std::string(solver) != "seed")
+                CHECK(energy() < start);
+            for (const auto& x : sim.state().position) {
+                CHECK(x.x >= 0);
+                CHECK(x.x <= 0.4);
+                CHECK(x.y >= 0);
+                CHECK(x.y <= 0.25);
+            }
+            // The front has moved.
+            Real front = 0;
+            for (std::size_t i = 0; i < sim.state().size(); ++i)
+                front = std::max(front, sim.state().position[i].x);
+            CHECK(front > 0.1);
+        }
+}

@@ -4,6 +4,8 @@
 #include "cli/compare_command.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/run_command.hpp"
+#include "cli/study_command.hpp"
+#include "cli/validate_command.hpp"
 #include "io/input_error.hpp"
 #include "render/gl_context.hpp"
 
@@ -81,6 +83,12 @@ int main(int argc, char** argv) {
     sph::CompareCliOptions compare;
     auto* compare_cmd = sph::add_compare_command(app, compare);
 
+    sph::ValidateOptions validate;
+    auto* validate_cmd = sph::add_validate_command(app, validate);
+
+    sph::StudyOptions study;
+    auto* study_cmd = sph::add_study_command(app, study);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -95,6 +103,12 @@ int main(int argc, char** argv) {
         }
         if (*compare_cmd)
             return sph::compare_command(compare);
+        if (*validate_cmd)
+            return sph::validate_command(validate);
+        if (*study_cmd) {
+            study.command_line = join_arguments(argc, argv);
+            return sph::study_command(study);
+        }
         if (!scene_path.empty())
             run.scene = scene_path;
         if (!out_path.empty())

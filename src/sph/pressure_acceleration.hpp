@@ -3,9 +3,13 @@
 // form that conserves momentum (Monaghan 1992, eq. 3.3; Becker & Teschner
 // 2007, eq. 6):
 //   a_i = - sum_j m (p_i / rho_i^2 + p_j / rho_j^2) grad W_ij
-// and from the wall particles, whose pressure is taken as the fluid
-// particle's own (Akinci et al. 2012, eq. 10):
-//   a_i -= sum_b rho0 V_b (p_i / rho_i^2) grad W_ib
+// and from the wall particles, whose pressure and density are mirrored from
+// the fluid particle beside them (p_b = p_i, rho_b = rho_i):
+//   a_i -= sum_b rho0 V_b (2 p_i / rho_i^2) grad W_ib
+// Our walls are several full layers of fluid-like particles, so they must
+// hold the fluid up as fluid below would; Akinci et al. 2012's single term
+// p_i / rho_i^2 (eq. 10, for one layer) would leave the bottom layer at twice
+// the hydrostatic pressure.
 // Overwrites state.acceleration: it is the first force of the step.
 
 #include "sph/boundary_particles.hpp"
@@ -37,7 +41,7 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
             for (std::uint32_t b : boundary_neighbours.of(i)) {
                 const Vec<D> x_ib = state.position[i] - xb[b];
                 const Real r = std::sqrt(squared_length<D>(x_ib));
-                a -= (params.rest_density * volume[b] * pi_over_rho2) *
+                a -= (params.rest_density * volume[b] * 2 * pi_over_rho2) *
                      boundary_gradient(kernel, x_ib, r);
             }
         }

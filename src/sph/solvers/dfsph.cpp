@@ -23,6 +23,10 @@
 
 namespace sph {
 
+namespace {
+constexpr Real jacobi_relaxation = 0.5;
+} // namespace
+
 template <int D>
 template <class Kernel>
 void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel,
@@ -45,7 +49,7 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel,
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
-        Vec<D> sum(0);
+        Vec<D> sum(0), walls_sum(0);
         Real sum_squares = 0;
         const std::uint32_t first = context.neighbours.start[i];
         for (std::uint32_t e = first; e < context.neighbours.start[i + 1]; ++e) {
@@ -68,10 +72,12 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel,
                 const Vec<D> w =
                     params.rest_density * volume[b] * boundary_gradient(kernel, x_ib, r);
                 wall_gradient_[e] = w;
-                sum += w;
+                walls_sum += w;
             }
         }
-        const Real S = squared_length<D>(sum) + sum_squares;
+        // The walls push with twice the particle's stiffness (pressure
+        // mirroring, see correct_velocities), so S_i = (G_f + G_w) . (G_f + 2 G_w) + sum |g|^2.
+        const Real S = glm::dot(sum + walls_sum, sum + Real(2) * walls_sum) + sum_squares;
         factor_[i] = S > tiny ? 1 / S : 0;
     }
 }
@@ -87,10 +93,30 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
                                                       : settings.divergence_tolerance) /
                            100;
     const Real rho0 = params.rest_density;
+    // Warm start (Bender & Koschier 2017, sec. 4.3): last step's stiffness
+    // is most of this step's, so it is applied first and the iterations only
+    // correct what changed. The density solve's s = dt p / rho^2 scales with
+    // dt; the divergence solve restarts from half its last value, as
+    // SPlisHSPlasH does, since its source changes sign more often.
+    std::vector<Real>& sum = target == Target::density ? stiffness_sum_ : divergence_sum_;
+    std::vector<Real>& previous =
+        target == Target::density ? previous_stiffness_ : previous_divergence_;
+    const Real scale = target == Target::divergence ? Real(0.5)
+                       : previous_dt_ > 0          ? dt / previous_dt_
+                                                   : 0;
+    if (previous.size() == n && scale > 0) {
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i)
+            stiffness_[i] = scale * previous[i];
+        correct_velocities(context, state);
+        sum = stiffness_;
+    } else {
+        sum.assign(n, 0);
+    }
     int iterations = 0;
     for (;;) {
-        // Compression rate with the current velocities; only compression is
-        // corrected (a free surface may expand: Bender & Koschier 2017, sec. 4).
+        // Compression with the current velocities. The error counts only
+        // compression: a free surface may expand (Bender & Koschier 2017, sec. 4).
         Real error_sum = 0;
 #pragma omp parallel for schedule(dynamic, 256) reduction(+ : error_sum)
         for (std::size_t i = 0; i < n; ++i) {
@@ -100,42 +126,63 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
             if (walls)
                 for (std::uint32_t e = walls->start[i]; e < walls->start[i + 1]; ++e)
                     rate += glm::dot(wall_gradient_[e], state.velocity[i]);
-            Real source;
-            if (target == Target::density)
-                source = std::max(state.density[i] + dt * rate - rho0, Real(0)) / dt;
-            else
-                source = std::max(rate, Real(0));
-            source_[i] = source;
-            error_sum += source;
+            source_[i] =
+                target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
+            // The residual of a pressure that must stay >= 0: compression
+            // anywhere, and expansion where there is pressure to give back.
+            error_sum += sum[i] > 0 ? std::abs(source_[i]) : std::max(source_[i], Real(0));
         }
-        // Mean relative compression (density) or compression within one step
-        // (divergence): dt * mean(source) / rho0 in both cases.
+        // Mean relative density error (density) or density change within one
+        // step (divergence): dt * mean(residual) / rho0 in both cases.
         const Real error = n ? dt * error_sum / (Real(n) * rho0) : 0;
         if (target == Target::density)
             last_density_error_pct_ = 100 * error;
         const bool converged = error <= tolerance && iterations >= settings.min_iterations;
         if (converged || iterations >= settings.max_iterations)
             break;
+        // Relaxed, projected Jacobi. Relaxed: the plain Jacobi update (the
+        // factor ignores how neighbours respond) overshoots and, with the
+        // 20-40 neighbours of our kernels, diverges in a deep tank; half of it
+        // converges, as in IISPH (Ihmsen et al. 2014, omega = 0.5). Projected:
+        // the summed stiffness (a pressure) never goes below zero, so the fluid
+        // does not pull itself together, but an expanding particle gives back
+        // pressure it was given before, which the warm start would otherwise
+        // only ever add to.
 #pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i)
-            stiffness_[i] = source_[i] * factor_[i];
-        // Gather: each particle corrects only its own velocity.
-#pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
-            Vec<D> dv(0);
-            const Real s_i = stiffness_[i];
-            for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
-                dv -= (s_i + stiffness_[pairs.index[e]]) * gradient_[e];
-            if (walls)
-                for (std::uint32_t e = walls->start[i]; e < walls->start[i + 1]; ++e)
-                    dv -= s_i * wall_gradient_[e];
-            state.velocity[i] += dv;
-            if (target == Target::density)
-                stiffness_sum_[i] += s_i;
+            const Real updated = std::max(sum[i] + jacobi_relaxation * source_[i] * factor_[i], Real(0));
+            stiffness_[i] = updated - sum[i];
+            sum[i] = updated;
         }
+        correct_velocities(context, state);
         ++iterations;
     }
+    previous = sum;
     return iterations;
+}
+
+// dv_i = - sum_j (s_i + s_j) g_ij - sum_b (s_i + s_i) w_ib with s = stiffness_:
+// a wall particle takes the stiffness (the pressure) of the fluid particle
+// beside it, so the walls, several layers of fluid-like particles, hold the
+// fluid up as the fluid below would (a single-sided s_i, as for Akinci's one
+// layer, leaves the bottom layer at twice the hydrostatic pressure).
+// Gather: each particle corrects only its own velocity.
+template <int D>
+void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>& state) const {
+    const std::size_t n = state.size();
+    const NeighbourList& pairs = context.neighbours;
+    const NeighbourList* walls = context.boundary ? &context.boundary_neighbours : nullptr;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+        Vec<D> dv(0);
+        const Real s_i = stiffness_[i];
+        for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
+            dv -= (s_i + stiffness_[pairs.index[e]]) * gradient_[e];
+        if (walls)
+            for (std::uint32_t e = walls->start[i]; e < walls->start[i + 1]; ++e)
+                dv -= (s_i + s_i) * wall_gradient_[e];
+        state.velocity[i] += dv;
+    }
 }
 
 template <int D>
@@ -156,12 +203,12 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     apply_effects(context.effects, params, context.neighbours, state);
     kick(dt, state);
     // 4. Constant density: v so that rho* = rho0; p_i = rho_i^2 s_i / dt.
-    std::fill(stiffness_sum_.begin(), stiffness_sum_.end(), Real(0));
     report.pressure_iterations = solve(params, dt, Target::density, context, state);
     const std::size_t n = state.size();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
         state.pressure[i] = state.density[i] * state.density[i] * stiffness_sum_[i] / dt;
+    previous_dt_ = dt;
     // 5. Move; the reflecting box stays behind the wall particles as a last guard.
     drift(dt, state);
     reflect_at_box(params, state);

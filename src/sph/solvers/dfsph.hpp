@@ -40,6 +40,7 @@ class DfsphSolver final : public Solver<D> {
                  State<D>& state);
     int solve(const Params<D>& params, Real dt, Target target, const StepContext<D>& context,
               State<D>& state);
+    void correct_velocities(const StepContext<D>& context, State<D>& state) const;
 
     KernelKind kernel_;
     Real last_density_error_pct_ = 0;
@@ -49,6 +50,9 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Real> factor_;          // 1 / S_i
     std::vector<Real> stiffness_;       // s_i of this iteration
     std::vector<Real> stiffness_sum_;   // s_i summed over the density solve
+    std::vector<Real> divergence_sum_;  // s_i summed over the divergence solve
+    std::vector<Real> previous_stiffness_, previous_divergence_; // last step's sums
+    Real previous_dt_ = 0;
     std::vector<Real> source_;          // the compression rate to remove
     std::vector<Vec<D>> gradient_;      // m grad W_ij per fluid pair (neighbour list order)
     std::vector<Vec<D>> wall_gradient_; // rho0 V_b grad W_ib per wall pair

@@ -1,0 +1,210 @@
+#include "cli/validate_command.hpp"
+
+#include "analysis/run_outputs.hpp"
+#include "cli/child_process.hpp"
+#include "cli/data_folders.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/run_child.hpp"
+#include "cli/validation_cases.hpp"
+#include "io/files.hpp"
+#include "io/input_error.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fmt/format.h>
+
+namespace sph {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// summary.csv: one row per case; a figure that does not apply is empty.
+const char* summary_header = "case,solver,status,particles,steps,wall_s,mean_abs_dZ,max_abs_dZ,"
+                             "pressure_error_rms_pct,pressure_error_max_pct,"
+                             "density_error_avg_pct,speed_max_m_s,verdict";
+
+std::string cell(const nlohmann::json& metrics, const char* key) {
+    return metrics.contains(key) && metrics[key].is_number()
+               ? fmt::format("{:.6g}", metrics[key].get<double>())
+               : "";
+}
+
+std::string status_of(const ChildRunResult& result) {
+    if (!result.started)
+        return "not_run";
+    switch (result.exit_code) {
+    case exit_success:
+        return "completed";
+    case exit_non_finite:
+        return "unstable";
+    case exit_interrupted:
+        return "interrupted";
+    case exit_bad_input:
+        return "bad_input";
+    default:
+        return "failed";
+    }
+}
+
+std::vector<const ValidationCase*> select_cases(const std::vector<std::string>& names) {
+    std::vector<const ValidationCase*> selected;
+    for (const auto& name : names) {
+        const auto* c = find_validation_case(name);
+        if (!c)
+            throw InputError("command line", "validate",
+                             fmt::format("unknown case \"{}\"; the cases are: {}", name,
+                                         validation_case_names()));
+        selected.push_back(c);
+    }
+    if (selected.empty())
+        for (const auto& c : validation_cases())
+            selected.push_back(&c);
+    return selected;
+}
+
+// Every scene and reference table in place before anything runs.
+void check_inputs(const std::vector<const ValidationCase*>& selected, const fs::path& scenes,
+                  fs::path& references) {
+    for (const auto* c : selected) {
+        if (!fs::exists(scenes / (c->name + ".json")))
+            throw InputError("command line", "--scenes-dir",
+                             fmt::format("no scene {} for the case {}",
+                                         (scenes / (c->name + ".json")).string(), c->name));
+        if (reference_file(*c).empty())
+            continue;
+        if (references.empty())
+            references = find_reference_folder();
+        if (!fs::exists(references / reference_file(*c)))
+            throw InputError(
+                "command line", "--reference-dir",
+                fmt::format("no reference table {}", (references / reference_file(*c)).string()));
+    }
+}
+
+} // namespace
+
+CLI::App* add_validate_command(CLI::App& app, ValidateOptions& options) {
+    auto* cmd = app.add_subcommand(
+        "validate",
+        "Run scenes with a known outcome (hydrostatic tank, dam break) and score them.");
+    cmd->add_option("cases", options.cases,
+                    "Cases to run (default all): " + validation_case_names());
+    cmd->add_option("--out", options.out, "Output folder")->capture_default_str();
+    cmd->add_option("--set", options.sets,
+                    "Override a scene field in every case: --set solver.name=seed (repeatable)")
+        ->type_name("KEY=VALUE")
+        ->allow_extra_args(false);
+    cmd->add_option("--jobs", options.jobs, "Cases run at once")
+        ->check(CLI::Range(1, 256))
+        ->capture_default_str();
+    cmd->add_option("--threads", options.threads,
+                    "Threads per run (default: all cores, or 1 when --jobs > 1)")
+        ->check(CLI::Range(1, 1024));
+    cmd->add_option("--scenes-dir", options.scenes_dir,
+                    "Folder of CASE.json (default: ./scenes, else beside the program's folder)");
+    cmd->add_option("--reference-dir", options.reference_dir,
+                    "Folder of the reference tables (default: ../shared/reference, searched)");
+    return cmd;
+}
+
+int validate_command(const ValidateOptions& options) {
+    const auto selected = select_cases(options.cases);
+    for (const auto& s : options.sets)
+        if (s.find('=') == std::string::npos)
+            throw InputError("command line", "--set",
+                             fmt::format("expected KEY=VALUE, got \"{}\"", s));
+    const fs::path scenes =
+        options.scenes_dir.empty() ? find_scenes_folder() : fs::path(options.scenes_dir);
+    fs::path references = options.reference_dir;
+    check_inputs(selected, scenes, references);
+
+    const fs::path out = options.out;
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec)
+        throw InputError("command line", "--out",
+                         fmt::format("cannot create {}: {}", out.string(), ec.message()));
+    const int threads = options.threads ? options.threads : (options.jobs > 1 ? 1 : 0);
+    std::vector<ChildRunRequest> requests;
+    for (const auto* c : selected) {
+        std::vector<std::string> sets = c->sets;
+        sets.insert(sets.end(), options.sets.begin(), options.sets.end());
+        requests.push_back(
+            {scenes / (c->name + ".json"), out / c->name / "run", sets, true, threads});
+    }
+
+    fmt::print("validate: {} case(s) into {}/, {} at a time\n", selected.size(), out.string(),
+               options.jobs);
+    std::fflush(stdout);
+    std::size_t done = 0;
+    const ChildBatch batch =
+        run_children(requests, options.jobs, [&](std::size_t i, const ChildRunResult& r) {
+            fmt::print("[{}/{}] {}: {} after {:.1f} s\n", ++done, selected.size(),
+                       selected[i]->name, status_of(r), r.measured_wall_s);
+            std::fflush(stdout);
+        });
+    if (batch.bad_input) {
+        fmt::print(stderr, "{}\n", last_lines(batch.runs[0].log, 5));
+        return exit_bad_input;
+    }
+
+    bool unstable = false, bad_input = false, failed = false;
+    std::string summary = std::string(summary_header) + "\n";
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+        const auto& c = *selected[i];
+        const auto& result = batch.runs[i];
+        const RunOutputs run = read_run_outputs(requests[i].out);
+        const nlohmann::json::json_pointer solver_key("/solver/name");
+        const std::string solver =
+            run.scene.contains(solver_key) ? run.scene.at(solver_key).get<std::string>() : "";
+        const double wall = std::isnan(run.wall_s) ? result.measured_wall_s : run.wall_s;
+        const std::string status = status_of(result);
+        nlohmann::json metrics;
+        std::string verdict;
+        if (result.started && result.exit_code == exit_success) {
+            try {
+                const CaseScore score = score_case(c, requests[i].out, out / c.name, references,
+                                                   true, "solver " + solver);
+                metrics = score.metrics;
+                verdict = score.pass ? "PASS" : "FAIL";
+                write_file_atomically(out / c.name / "metrics.json", metrics.dump(2) + "\n");
+                fmt::print("{:<15} solver={:<6} {}  wall={:.1f}s  {}\n", c.name, solver,
+                           score.figures, wall, verdict);
+            } catch (const std::exception& e) {
+                fmt::print("{:<15} solver={:<6} cannot score the run: {}\n", c.name, solver,
+                           e.what());
+                failed = true;
+            }
+        } else if (!result.started) {
+            fmt::print("{:<15} not run\n", c.name);
+        } else {
+            fmt::print("{:<15} solver={:<6} {} (exit {}) after {:.1f}s\n", c.name, solver, status,
+                       result.exit_code, wall);
+            fmt::print("    {}\n", error_line(result.log));
+            unstable |= result.exit_code == exit_non_finite;
+            bad_input |= result.exit_code == exit_bad_input;
+            failed |= result.exit_code != exit_non_finite && result.exit_code != exit_bad_input &&
+                      result.exit_code != exit_interrupted;
+        }
+        summary += fmt::format(
+            "{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.name, solver, status, run.particles,
+            run.steps, result.started ? fmt::format("{:.4g}", wall) : "",
+            cell(metrics, "mean_abs_dZ"), cell(metrics, "max_abs_dZ"),
+            cell(metrics, "pressure_error_rms_pct"), cell(metrics, "pressure_error_max_pct"),
+            cell(metrics, "density_error_avg_pct"), cell(metrics, "speed_max_m_s"), verdict);
+    }
+    write_file_atomically(out / "summary.csv", summary);
+    fmt::print("validate: summary in {}; comparison tables and plots in {}/CASE/\n",
+               (out / "summary.csv").string(), out.string());
+    if (batch.interrupted)
+        return exit_interrupted;
+    if (bad_input)
+        return exit_bad_input;
+    if (unstable)
+        return exit_non_finite;
+    return failed ? exit_failure : exit_success;
+}
+
+} // namespace sph

@@ -41,9 +41,14 @@ std::string plot_commands(const StudyReport& report) {
     // One datablock per solver, so each is a series of its own colour.
     std::map<std::string, std::string> series;
     std::vector<const StudyRow*> front;
+    double error_min = INFINITY, error_max = 0, wall_min = INFINITY, wall_max = 0;
     for (const auto& row : report.rows) {
         if (!plotted(row))
             continue;
+        error_min = std::min(error_min, row.error);
+        error_max = std::max(error_max, row.error);
+        wall_min = std::min(wall_min, row.wall_s);
+        wall_max = std::max(wall_max, row.wall_s);
         series[row.solver] += fmt::format("{:.6g},{:.6g},{}\n", row.wall_s, row.error, row.run);
         if (row.pareto)
             front.push_back(&row);
@@ -70,8 +75,11 @@ std::string plot_commands(const StudyReport& report) {
                 "set xrange [0:1]\nset yrange [0:1]\nplot NaN notitle\n";
         return text;
     }
-    text += "set logscale xy\nset format y '%g'\nset format x '%g'\n"
-            "set offsets graph 0.08, graph 0.08, graph 0.08, graph 0.08\n";
+    // Ranges from the data with a margin of a factor 1.6 (graph offsets would
+    // add whole decades on log axes and squash the points together).
+    text += "set logscale xy\nset format y '%g'\nset format x '%g'\n";
+    text += fmt::format("set xrange [{:.6g}:{:.6g}]\nset yrange [{:.6g}:{:.6g}]\n", wall_min / 1.6,
+                        wall_max * 1.6, error_min / 1.6, error_max * 1.6);
     std::vector<std::string> plots;
     int index = 0;
     for (const auto& [solver, rows] : series) {

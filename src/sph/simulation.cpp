@@ -1,5 +1,6 @@
 #include "sph/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace sph {
@@ -19,7 +20,10 @@ template <int D>
 Real Simulation<D>::next_dt() const {
     if (params_.time_step.fixed)
         return params_.time_step.dt;
-    return stable_time_step(params_, solver_->time_step_model(), measure_rates(state_));
+    ExtremeRates rates = measure_rates(state_);
+    for (const auto& effect : effects_)
+        rates.max_acceleration = std::max(rates.max_acceleration, effect->body_acceleration());
+    return stable_time_step(params_, solver_->time_step_model(), rates);
 }
 
 template <int D>

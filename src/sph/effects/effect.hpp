@@ -22,6 +22,10 @@ class Effect {
     // Adds this effect's acceleration to state.acceleration.
     virtual void apply(const Params<D>& params, const NeighbourList& neighbours,
                        State<D>& state) const = 0;
+    // The magnitude of a uniform acceleration it gives every particle (0 if
+    // none), known before any step: the time step's force condition needs
+    // it on the first step, before any acceleration has been computed.
+    virtual Real body_acceleration() const { return 0; }
 };
 
 template <int D>

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <map>
+#include <vector>
 
 namespace sph {
 
@@ -80,6 +82,18 @@ std::string plot_commands(const StudyReport& report) {
     text += "set logscale xy\nset format y '%g'\nset format x '%g'\n";
     text += fmt::format("set xrange [{:.6g}:{:.6g}]\nset yrange [{:.6g}:{:.6g}]\n", wall_min / 1.6,
                         wall_max * 1.6, error_min / 1.6, error_max * 1.6);
+    // Labelled ticks at 1, 2 and 5 times each power of ten in range (decade
+    // ticks alone would leave one or two labels on a short axis).
+    const auto ticks = [](double lo, double hi) {
+        std::vector<std::string> values;
+        for (int k = int(std::floor(std::log10(lo))); k <= int(std::ceil(std::log10(hi))); ++k)
+            for (double m : {1.0, 2.0, 5.0})
+                if (const double v = m * std::pow(10.0, k); v >= lo && v <= hi)
+                    values.push_back(fmt::format("{:g}", v));
+        return fmt::format("({})", fmt::join(values, ", "));
+    };
+    text += fmt::format("set xtics {}\nset ytics {}\n", ticks(wall_min / 1.6, wall_max * 1.6),
+                        ticks(error_min / 1.6, error_max * 1.6));
     std::vector<std::string> plots;
     int index = 0;
     for (const auto& [solver, rows] : series) {

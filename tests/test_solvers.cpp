@@ -280,3 +280,15 @@ TEST_CASE("every solver keeps a dam break inside its walls", "[solvers]") {
             CHECK(front > 0.1);
         }
 }
+
+TEST_CASE("dfsph's warm start saves pressure iterations", "[solvers]") {
+    std::uint64_t iterations[2] = {0, 0};
+    for (int warm : {0, 1}) {
+        auto sim = make_simulation<2>(
+            tank(2, "dfsph", "cubic_spline", {{"solver.warm_start", warm ? "true" : "false"}}));
+        sim.advance_to(0.1);
+        const StepCounters c = sim.take_counters();
+        iterations[warm] = c.pressure_iterations + c.divergence_iterations;
+    }
+    CHECK(iterations[1] < iterations[0]);
+}

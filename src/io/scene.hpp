@@ -64,6 +64,7 @@ struct Scene {
         double divergence_tolerance = 0.1;         // % per step (dfsph)
         int min_iterations = 2;                    // dfsph
         int max_iterations = 100;                  // dfsph
+        bool warm_start = false;                   // dfsph
         std::string neighbour_search = "hash";
     } solver;
 

@@ -31,7 +31,8 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.walls = derived.walls == "particles" ? WallModel::particles : WallModel::reflect;
     p.time_step = time_step_settings(scene);
     p.pressure_solve = {scene.solver.tolerance, scene.solver.divergence_tolerance,
-                        scene.solver.min_iterations, scene.solver.max_iterations};
+                        scene.solver.min_iterations, scene.solver.max_iterations,
+                        scene.solver.warm_start};
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     return p;
 }

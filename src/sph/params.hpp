@@ -32,6 +32,7 @@ struct PressureSolveSettings {
     Real divergence_tolerance = 0.1; // %: mean dt (D rho / Dt) / rho0 allowed
     int min_iterations = 2;
     int max_iterations = 100;
+    bool warm_start = false; // start from the last step's pressure
 };
 
 template <int D>

@@ -120,8 +120,7 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
     for (;;) {
         // Compression with the current velocities. The error counts only
         // compression: a free surface may expand (Bender & Koschier 2017, sec. 4).
-        Real error_sum = 0;
-#pragma omp parallel for schedule(dynamic, 256) reduction(+ : error_sum)
+#pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
             Real rate = 0;
             for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
@@ -131,10 +130,14 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
                     rate += glm::dot(wall_gradient_[e], state.velocity[i]);
             source_[i] =
                 target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
-            // The residual of a pressure that must stay >= 0: compression
-            // anywhere, and expansion where there is pressure to give back.
-            error_sum += sum[i] > 0 ? std::abs(source_[i]) : std::max(source_[i], Real(0));
         }
+        // The residual of a pressure that must stay >= 0: compression
+        // anywhere, and expansion where there is pressure to give back.
+        // Summed in particle order, not by an OpenMP reduction, so that the
+        // iteration count, and so every bit, is the same for any thread count.
+        Real error_sum = 0;
+        for (std::size_t i = 0; i < n; ++i)
+            error_sum += sum[i] > 0 ? std::abs(source_[i]) : std::max(source_[i], Real(0));
         // Mean relative density error (density) or density change within one
         // step (divergence): dt * mean(residual) / rho0 in both cases.
         const Real error = n ? dt * error_sum / (Real(n) * rho0) : 0;

@@ -57,7 +57,8 @@ void add_laminar_viscosity(const Params<D>& params, const Kernel& kernel,
 // rings with, at the price of some extra dissipation.
 template <int D, class Kernel>
 void add_artificial_viscosity(const Params<D>& params, const Kernel& kernel,
-                              const NeighbourList& neighbours, State<D>& state) {
+                              const NeighbourList& neighbours, const BoundaryParticles<D>* boundary,
+                              const NeighbourList& boundary_neighbours, State<D>& state) {
     const std::size_t n = state.size();
     const Real eps = 0.01 * params.h * params.h;
     const Real nu_scale = 2 * params.artificial_viscosity * params.h * params.sound_speed();
@@ -75,6 +76,24 @@ void add_artificial_viscosity(const Params<D>& params, const Kernel& kernel,
                 -nu_scale / (state.density[i] + state.density[j]) * v_dot_x / (r2 + eps);
             // grad W = (dW/dr / r) x_ij; at r = 0 v_dot_x is 0 and we never get here.
             a -= (params.mass * Pi * kernel.dW(r) / r) * x_ij;
+        }
+        // The walls too (as Akinci et al. 2012 do): a wall particle is fluid
+        // at rest with the particle's density and mass rho0 V_b. Without it a
+        // particle that comes close to a wall, where the smooth kernels'
+        // gradients fade, meets no damping and squirts along it.
+        if (boundary) {
+            const auto xb = boundary->positions();
+            const auto volume = boundary->volumes();
+            for (std::uint32_t b : boundary_neighbours.of(i)) {
+                const Vec<D> x_ib = state.position[i] - xb[b];
+                const Real v_dot_x = glm::dot(state.velocity[i], x_ib);
+                if (v_dot_x >= 0)
+                    continue;
+                const Real r2 = squared_length<D>(x_ib);
+                const Real r = std::sqrt(r2);
+                const Real Pi = -nu_scale / (2 * state.density[i]) * v_dot_x / (r2 + eps);
+                a -= (params.rest_density * volume[b] * Pi * kernel.dW(r) / r) * x_ib;
+            }
         }
         state.acceleration[i] += a;
     }

@@ -34,7 +34,8 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
                                       context.boundary_neighbours, state);
         // 3. Viscosity: Monaghan's artificial term, and the fluid's own (Morris).
         if (params.artificial_viscosity > 0)
-            add_artificial_viscosity(params, kernel, context.neighbours, state);
+            add_artificial_viscosity(params, kernel, context.neighbours, context.boundary,
+                                     context.boundary_neighbours, state);
         if (params.viscosity > 0)
             add_laminar_viscosity(params, kernel, context.neighbours, context.boundary,
                                   context.boundary_neighbours, state);

@@ -1,8 +1,8 @@
 // src/io/mp4_writer: clips written to a temporary folder and decoded back
 // with libavformat/libavcodec, as a player would.
 
-#include "io/mp4_writer.hpp"
 #include "io/libav_handles.hpp"
+#include "io/mp4_writer.hpp"
 #include "support/temp_folder.hpp"
 
 extern "C" {

@@ -79,8 +79,7 @@ TEST_CASE("frames: advance_to stops at the first step at or past the time", "[si
 TEST_CASE("one thread and two threads give the same bits", "[simulation]") {
     for (const char* solver : {"seed", "wcsph", "dfsph"}) {
         INFO(solver);
-        const Scene scene =
-            small_dam_break({{"fluid.spacing", "0.0025"}, {"solver.name", solver}});
+        const Scene scene = small_dam_break({{"fluid.spacing", "0.0025"}, {"solver.name", solver}});
         auto run = [&](int threads) {
             omp_set_num_threads(threads);
             auto sim = make_simulation<2>(scene);

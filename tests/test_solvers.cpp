@@ -21,15 +21,16 @@ namespace {
 // A 2D or 3D block of fluid at rest filling the bottom of a closed box.
 Scene tank(int dimension, const std::string& solver, const std::string& kernel,
            std::vector<Override> extra = {}) {
-    std::vector<Override> o{{"dimension", std::to_string(dimension)},
-                            {"solver.name", solver},
-                            {"solver.kernel", kernel},
-                            {"fluid.spacing", "0.01"},
-                            {"domain.min", dimension == 2 ? "[0,0]" : "[0,0,0]"},
-                            {"domain.max", dimension == 2 ? "[0.1,0.1]" : "[0.06,0.06,0.06]"},
-                            {"fluid.blocks.0.min", dimension == 2 ? "[0,0]" : "[0,0,0]"},
-                            {"fluid.blocks.0.max", dimension == 2 ? "[0.1,0.05]" : "[0.06,0.03,0.06]"},
-                            {"fluid.smoothing_ratio", "2"}};
+    std::vector<Override> o{
+        {"dimension", std::to_string(dimension)},
+        {"solver.name", solver},
+        {"solver.kernel", kernel},
+        {"fluid.spacing", "0.01"},
+        {"domain.min", dimension == 2 ? "[0,0]" : "[0,0,0]"},
+        {"domain.max", dimension == 2 ? "[0.1,0.1]" : "[0.06,0.06,0.06]"},
+        {"fluid.blocks.0.min", dimension == 2 ? "[0,0]" : "[0,0,0]"},
+        {"fluid.blocks.0.max", dimension == 2 ? "[0.1,0.05]" : "[0.06,0.03,0.06]"},
+        {"fluid.smoothing_ratio", "2"}};
     o.insert(o.end(), extra.begin(), extra.end());
     return default_scene(o);
 }
@@ -94,8 +95,8 @@ TEST_CASE("the walls of a box are sampled as deep as the kernel reaches", "[solv
     CHECK(walls.size() == 16 * 11 - 10 * 5);
     for (const auto& x : walls.positions())
         CHECK((x.x < 0 || x.x > 0.1 || x.y < 0 || x.y > 0.05));
-    const auto walls_3d = BoundaryParticles<3>::box_walls({{0, 0, 0}, {0.05, 0.04, 0.03}}, 0.01,
-                                                          0.015, 1e-6);
+    const auto walls_3d =
+        BoundaryParticles<3>::box_walls({{0, 0, 0}, {0.05, 0.04, 0.03}}, 0.01, 0.015, 1e-6);
     CHECK(walls_3d.size() == 9 * 8 * 7 - 5 * 4 * 3);
     // A point beside the wall finds exactly the wall particles within h.
     NeighbourList list;
@@ -113,8 +114,8 @@ TEST_CASE("the adaptive step follows the CFL, viscous and force conditions", "[s
     settings.cfl = 0.5;
     settings.dt_min = 1e-9;
     settings.dt_max = 1;
-    TimeStepScales scales{.h = 0.02, .spacing = 0.01, .sound_speed = 10, .rest_density = 1000,
-                          .viscosity = 0};
+    TimeStepScales scales{
+        .h = 0.02, .spacing = 0.01, .sound_speed = 10, .rest_density = 1000, .viscosity = 0};
     // Weakly compressible: the sound crosses cfl h per step.
     CHECK(stable_time_step(settings, scales, {.carries_sound = true}, {2, 0}) ==
           Approx(0.5 * 0.02 / 12));
@@ -223,8 +224,11 @@ TEST_CASE("dfsph's density solve brings the error below its tolerance", "[solver
 
 TEST_CASE("wcsph conserves momentum without walls and gravity", "[solvers]") {
     auto scene = tank(2, "wcsph", "wendland_c2",
-                      {{"effects", "{}"}, {"solver.walls", "reflect"}, {"domain.max", "[10,10]"},
-                       {"fluid.blocks.0.min", "[5,5]"}, {"fluid.blocks.0.max", "[5.1,5.05]"},
+                      {{"effects", "{}"},
+                       {"solver.walls", "reflect"},
+                       {"domain.max", "[10,10]"},
+                       {"fluid.blocks.0.min", "[5,5]"},
+                       {"fluid.blocks.0.max", "[5.1,5.05]"},
                        {"fluid.blocks.0.velocity", "[0.3,-0.1]"}});
     auto sim = make_simulation<2>(scene);
     // Stir it so that pressure and viscosity work.

@@ -501,11 +501,11 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.solver.name = r.choice("solver.name", d.solver.name, solver_names(),
                              "Solver: seed (the report's model), wcsph (Becker & Teschner 2007) "
                              "or dfsph (Bender & Koschier 2017).");
-    s.solver.kernel = r.choice("solver.kernel", d.solver.kernel,
-                               {"auto", "seed", "cubic_spline", "wendland_c2"},
-                               "Smoothing kernel: seed (poly6 values, spiky gradients), "
-                               "cubic_spline or wendland_c2; auto: seed for the seed solver, "
-                               "cubic_spline for the others.");
+    s.solver.kernel =
+        r.choice("solver.kernel", d.solver.kernel, {"auto", "seed", "cubic_spline", "wendland_c2"},
+                 "Smoothing kernel: seed (poly6 values, spiky gradients), "
+                 "cubic_spline or wendland_c2; auto: seed for the seed solver, "
+                 "cubic_spline for the others.");
     s.solver.dt = r.optional_number(
         "solver.dt", "s", "adaptive",
         "Fixed time step; without it the step adapts (solver.cfl, solver.dt_min, solver.dt_max).",
@@ -514,14 +514,14 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
                             "Courant number of the adaptive step: dt <= cfl h / (c + v_max) for "
                             "seed and wcsph, dt <= cfl spacing / v_max for dfsph.",
                             Bound::positive);
-    s.solver.dt_min = r.number("solver.dt_min", d.solver.dt_min, "s",
-                               "Smallest adaptive step.", Bound::positive);
-    s.solver.dt_max = r.number("solver.dt_max", d.solver.dt_max, "s", "Largest adaptive step.",
-                               Bound::positive);
-    s.solver.integrator = r.choice("solver.integrator", d.solver.integrator,
-                                   {"symplectic_euler", "verlet"},
-                                   "Time integrator of seed and wcsph: symplectic_euler (first "
-                                   "order, the seed's) or verlet (kick-drift-kick, second order).");
+    s.solver.dt_min =
+        r.number("solver.dt_min", d.solver.dt_min, "s", "Smallest adaptive step.", Bound::positive);
+    s.solver.dt_max =
+        r.number("solver.dt_max", d.solver.dt_max, "s", "Largest adaptive step.", Bound::positive);
+    s.solver.integrator =
+        r.choice("solver.integrator", d.solver.integrator, {"symplectic_euler", "verlet"},
+                 "Time integrator of seed and wcsph: symplectic_euler (first "
+                 "order, the seed's) or verlet (kick-drift-kick, second order).");
     s.solver.walls = r.choice("solver.walls", d.solver.walls, {"auto", "reflect", "particles"},
                               "Domain walls: reflect (the seed's) or particles (Akinci et al. "
                               "2012 boundary particles); auto: reflect for seed, particles for "
@@ -529,17 +529,16 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.solver.artificial_viscosity =
         r.number("solver.artificial_viscosity", d.solver.artificial_viscosity, "",
                  "Alpha of Monaghan's artificial viscosity (wcsph).", Bound::non_negative);
-    s.solver.tolerance = r.number("solver.tolerance", d.solver.tolerance, "%",
-                                  "dfsph: mean density error the density solve stops at.",
-                                  Bound::positive);
-    s.solver.divergence_tolerance =
-        r.number("solver.divergence_tolerance", d.solver.divergence_tolerance, "%",
-                 "dfsph: mean density change per step the divergence solve stops at.",
-                 Bound::positive);
-    s.solver.min_iterations = r.integer("solver.min_iterations", d.solver.min_iterations, 0,
-                                        100000, "dfsph: fewest iterations of each solve.");
-    s.solver.max_iterations = r.integer("solver.max_iterations", d.solver.max_iterations, 1,
-                                        100000, "dfsph: most iterations of each solve.");
+    s.solver.tolerance =
+        r.number("solver.tolerance", d.solver.tolerance, "%",
+                 "dfsph: mean density error the density solve stops at.", Bound::positive);
+    s.solver.divergence_tolerance = r.number(
+        "solver.divergence_tolerance", d.solver.divergence_tolerance, "%",
+        "dfsph: mean density change per step the divergence solve stops at.", Bound::positive);
+    s.solver.min_iterations = r.integer("solver.min_iterations", d.solver.min_iterations, 0, 100000,
+                                        "dfsph: fewest iterations of each solve.");
+    s.solver.max_iterations = r.integer("solver.max_iterations", d.solver.max_iterations, 1, 100000,
+                                        "dfsph: most iterations of each solve.");
     s.solver.warm_start = r.boolean("solver.warm_start", d.solver.warm_start,
                                     "dfsph: start each pressure solve from the last step's "
                                     "(2-3x fewer iterations; less accurate pressure in deep "
@@ -773,10 +772,10 @@ Derived derive(const Scene& s) {
     const int dim = s.dimension;
     const double ratio = s.fluid.smoothing_ratio.value_or(default_smoothing_ratio(dim));
     d.h = s.fluid.smoothing_length.value_or(ratio * s.fluid.spacing);
-    d.kernel = s.solver.kernel != "auto"  ? s.solver.kernel
+    d.kernel = s.solver.kernel != "auto" ? s.solver.kernel
                : s.solver.name == "seed" ? "seed"
                                          : "cubic_spline";
-    d.walls = s.solver.walls != "auto" ? s.solver.walls
+    d.walls = s.solver.walls != "auto"  ? s.solver.walls
               : s.solver.name == "seed" ? "reflect"
                                         : "particles";
     if (s.fluid.mass) {
@@ -785,8 +784,9 @@ Derived derive(const Scene& s) {
         // The density kernel's sum on the lattice: a lattice particle gets exactly rho0.
         const KernelKind kind = kernel_kind(d.kernel);
         const double sum =
-            dim == 2 ? with_kernel<2>(kind, d.h,
-                                      [&](const auto& W) { return lattice_kernel_sum<2>(W, s.fluid.spacing); })
+            dim == 2 ? with_kernel<2>(
+                           kind, d.h,
+                           [&](const auto& W) { return lattice_kernel_sum<2>(W, s.fluid.spacing); })
                      : with_kernel<3>(kind, d.h, [&](const auto& W) {
                            return lattice_kernel_sum<3>(W, s.fluid.spacing);
                        });
@@ -802,11 +802,10 @@ Derived derive(const Scene& s) {
         if (s.effects.gravity)
             for (int a = 0; a < dim; ++a)
                 g += (*s.effects.gravity)[a] * (*s.effects.gravity)[a];
-        d.dt = stable_time_step(time_step_settings(s),
-                                {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density,
-                                 s.material.viscosity},
-                                {.carries_sound = s.solver.name != "dfsph"},
-                                {0, std::sqrt(g)});
+        d.dt = stable_time_step(
+            time_step_settings(s),
+            {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density, s.material.viscosity},
+            {.carries_sound = s.solver.name != "dfsph"}, {0, std::sqrt(g)});
     }
     for (const auto& b : s.fluid.blocks) {
         std::size_t count = 1;

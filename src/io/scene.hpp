@@ -51,20 +51,20 @@ struct Scene {
     } material;
 
     struct Solver {
-        std::string name = "seed";                 // seed | wcsph | dfsph
-        std::string kernel = "auto";               // auto | seed | cubic_spline | wendland_c2
-        std::optional<double> dt;                  // s; fixed step; default adaptive
-        double cfl = 0.4;                          // Courant number of the adaptive step
-        double dt_min = 1e-7;                      // s
-        double dt_max = 5e-3;                      // s
+        std::string name = "seed";                   // seed | wcsph | dfsph
+        std::string kernel = "auto";                 // auto | seed | cubic_spline | wendland_c2
+        std::optional<double> dt;                    // s; fixed step; default adaptive
+        double cfl = 0.4;                            // Courant number of the adaptive step
+        double dt_min = 1e-7;                        // s
+        double dt_max = 5e-3;                        // s
         std::string integrator = "symplectic_euler"; // symplectic_euler | verlet
-        std::string walls = "auto";                // auto | reflect | particles
-        double artificial_viscosity = 0.02;        // alpha (wcsph)
-        double tolerance = 0.05;                   // % density error (dfsph)
-        double divergence_tolerance = 0.1;         // % per step (dfsph)
-        int min_iterations = 2;                    // dfsph
-        int max_iterations = 100;                  // dfsph
-        bool warm_start = false;                   // dfsph
+        std::string walls = "auto";                  // auto | reflect | particles
+        double artificial_viscosity = 0.02;          // alpha (wcsph)
+        double tolerance = 0.05;                     // % density error (dfsph)
+        double divergence_tolerance = 0.1;           // % per step (dfsph)
+        int min_iterations = 2;                      // dfsph
+        int max_iterations = 100;                    // dfsph
+        bool warm_start = false;                     // dfsph
         std::string neighbour_search = "hash";
     } solver;
 
@@ -93,9 +93,9 @@ struct Scene {
 
 // Values derived from the scene (documented in the README).
 struct Derived {
-    double h = 0;           // m, support radius
-    double mass = 0;        // kg
-    double dt = 0;          // s, the fixed step, or the adaptive rule's first step
+    double h = 0;    // m, support radius
+    double mass = 0; // kg
+    double dt = 0;   // s, the fixed step, or the adaptive rule's first step
     bool fixed_dt = false;
     std::string kernel;     // solver.kernel resolved
     std::string walls;      // solver.walls resolved

@@ -26,8 +26,8 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.spacing = scene.fluid.spacing;
     p.artificial_viscosity = scene.solver.artificial_viscosity;
     p.kernel = kernel_kind(derived.kernel);
-    p.integrator = scene.solver.integrator == "verlet" ? Integrator::verlet
-                                                       : Integrator::symplectic_euler;
+    p.integrator =
+        scene.solver.integrator == "verlet" ? Integrator::verlet : Integrator::symplectic_euler;
     p.walls = derived.walls == "particles" ? WallModel::particles : WallModel::reflect;
     p.time_step = time_step_settings(scene);
     p.pressure_solve = {scene.solver.tolerance, scene.solver.divergence_tolerance,
@@ -78,10 +78,9 @@ EffectList<D> make_effects(const Scene& scene) {
 template <int D>
 Simulation<D> make_simulation(const Scene& scene, const Derived& derived) {
     const Params<D> params = make_params<D>(scene, derived);
-    return Simulation<D>(params, make_initial_state<D>(scene, derived),
-                         make_solver<D>(scene.solver.name, params),
-                         make_neighbour_search<D>(scene.solver.neighbour_search),
-                         make_effects<D>(scene));
+    return Simulation<D>(
+        params, make_initial_state<D>(scene, derived), make_solver<D>(scene.solver.name, params),
+        make_neighbour_search<D>(scene.solver.neighbour_search), make_effects<D>(scene));
 }
 
 template Params<2> make_params<2>(const Scene&, const Derived&);

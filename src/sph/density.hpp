@@ -48,7 +48,8 @@ void add_boundary_density(const Params<D>& params, const Kernel& kernel,
     for (std::size_t i = 0; i < n; ++i) {
         Real sum = 0;
         for (std::uint32_t b : boundary_neighbours.of(i))
-            sum += volume[b] * kernel_value_squared(kernel, squared_length<D>(state.position[i] - xb[b]));
+            sum += volume[b] *
+                   kernel_value_squared(kernel, squared_length<D>(state.position[i] - xb[b]));
         state.density[i] += params.rest_density * sum;
     }
 }

@@ -37,14 +37,14 @@ struct PressureSolveSettings {
 
 template <int D>
 struct Params {
-    Real mass = 0;         // kg, of every particle
-    Real h = 0;            // m, support radius of the kernels
-    Real spacing = 0;      // m, rest distance between particles
-    Real rest_density = 0; // kg/m^3
-    Real bulk_modulus = 0; // Pa, K in p = K (rho - rho0)
-    Real viscosity = 0;    // Pa.s, dynamic viscosity mu
+    Real mass = 0;                 // kg, of every particle
+    Real h = 0;                    // m, support radius of the kernels
+    Real spacing = 0;              // m, rest distance between particles
+    Real rest_density = 0;         // kg/m^3
+    Real bulk_modulus = 0;         // Pa, K in p = K (rho - rho0)
+    Real viscosity = 0;            // Pa.s, dynamic viscosity mu
     Real artificial_viscosity = 0; // alpha of Monaghan's artificial viscosity (wcsph)
-    Box<D> domain;         // m, the walls
+    Box<D> domain;                 // m, the walls
     KernelKind kernel = KernelKind::seed;
     Integrator integrator = Integrator::symplectic_euler;
     WallModel walls = WallModel::reflect;

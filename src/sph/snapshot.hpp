@@ -4,8 +4,8 @@
 // The renderer and the writers never touch State or the solver.
 
 #include "sph/diagnostics.hpp"
-#include "sph/step_counters.hpp"
 #include "sph/state.hpp"
+#include "sph/step_counters.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -16,10 +16,10 @@ namespace sph {
 struct Snapshot {
     int dimension = 2;
     std::uint64_t frame = 0;
-    std::uint64_t steps = 0; // since the start
-    Real time = 0;           // s
+    std::uint64_t steps = 0;  // since the start
+    Real time = 0;            // s
     StepCounters steps_taken; // since the previous frame: dt range, solver iterations
-    Real wall_seconds = 0;   // since the start of the simulation
+    Real wall_seconds = 0;    // since the start of the simulation
     FrameStats stats;
     // Particle fields, `dimension` values per particle for vectors.
     std::vector<Real> position, velocity, density, pressure;

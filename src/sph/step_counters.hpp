@@ -13,8 +13,8 @@ struct StepCounters {
     Real dt_min = std::numeric_limits<Real>::infinity(); // s
     Real dt_max = 0;                                     // s
     Real dt_sum = 0;                                     // s
-    std::uint64_t pressure_iterations = 0;   // summed over the steps
-    std::uint64_t divergence_iterations = 0; // summed over the steps
+    std::uint64_t pressure_iterations = 0;               // summed over the steps
+    std::uint64_t divergence_iterations = 0;             // summed over the steps
 
     Real dt_mean() const { return steps ? dt_sum / Real(steps) : 0; }
 };

@@ -18,8 +18,8 @@ ExtremeRates measure_rates(const State<D>& state) {
     return {std::sqrt(v2), std::sqrt(a2)};
 }
 
-Real stable_time_step(const TimeStepSettings& ts, const TimeStepScales& scales,
-                      TimeStepModel model, ExtremeRates rates) {
+Real stable_time_step(const TimeStepSettings& ts, const TimeStepScales& scales, TimeStepModel model,
+                      ExtremeRates rates) {
     Real dt = ts.dt_max;
     if (model.carries_sound)
         dt = std::min(dt, ts.cfl * scales.h / (scales.sound_speed + rates.max_speed));

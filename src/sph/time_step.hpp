@@ -44,10 +44,10 @@ Real stable_time_step(const TimeStepSettings& settings, const TimeStepScales& sc
 
 template <int D>
 Real stable_time_step(const Params<D>& params, TimeStepModel model, ExtremeRates rates) {
-    return stable_time_step(params.time_step,
-                            {params.h, params.spacing, params.sound_speed(), params.rest_density,
-                             params.viscosity},
-                            model, rates);
+    return stable_time_step(
+        params.time_step,
+        {params.h, params.spacing, params.sound_speed(), params.rest_density, params.viscosity},
+        model, rates);
 }
 
 } // namespace sph

@@ -16,8 +16,12 @@ class Gravity final : public Effect<D> {
         for (std::size_t i = 0; i < n; ++i)
             state.acceleration[i] += g_;
     }
-    const Vec<D>& acceleration() const { return g_; }
-    Real body_acceleration() const override { return glm::length(g_); }
+    const Vec<D>& acceleration() const {
+        return g_;
+    }
+    Real body_acceleration() const override {
+        return glm::length(g_);
+    }
 
   private:
     Vec<D> g_;

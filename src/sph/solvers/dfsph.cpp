@@ -29,14 +29,13 @@ constexpr Real jacobi_relaxation = 0.5;
 
 template <int D>
 template <class Kernel>
-void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel,
-                             StepContext<D>& context, State<D>& state) {
+void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
+                             State<D>& state) {
     const std::size_t n = state.size();
     context.find_neighbours(state.position, params.h);
     compute_density(params, kernel, context.neighbours, state);
     if (context.boundary)
-        add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours,
-                             state);
+        add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours, state);
 
     factor_.resize(n);
     stiffness_.resize(n);
@@ -89,24 +88,23 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
     const NeighbourList& pairs = context.neighbours;
     const NeighbourList* walls = context.boundary ? &context.boundary_neighbours : nullptr;
     const PressureSolveSettings& settings = params.pressure_solve;
-    const Real tolerance = (target == Target::density ? settings.tolerance
-                                                      : settings.divergence_tolerance) /
-                           100;
+    const Real tolerance =
+        (target == Target::density ? settings.tolerance : settings.divergence_tolerance) / 100;
     const Real rho0 = params.rest_density;
     // Warm start (Bender & Koschier 2017, sec. 4.3; solver.warm_start): last
     // step's stiffness is most of this step's, so it is applied first and the
     // iterations only correct what changed. Measured: 2-3x fewer iterations,
     // but in a deep tank the pressure drifts up (the solve fixes its
     // gradient near the surface, hardly its level below), 31% against 11%
-    // without, so it is off by default. The density solve's s = dt p / rho^2 scales with
-    // dt; the divergence solve restarts from half its last value, as
-    // SPlisHSPlasH does, since its source changes sign more often.
+    // without, so it is off by default. The density solve's s = dt p / rho^2
+    // scales with dt; the divergence solve restarts from half its last value,
+    // as SPlisHSPlasH does, since its source changes sign more often.
     std::vector<Real>& sum = target == Target::density ? stiffness_sum_ : divergence_sum_;
     std::vector<Real>& previous =
         target == Target::density ? previous_stiffness_ : previous_divergence_;
     const Real scale = target == Target::divergence ? Real(0.5)
-                       : previous_dt_ > 0          ? dt / previous_dt_
-                                                   : 0;
+                       : previous_dt_ > 0           ? dt / previous_dt_
+                                                    : 0;
     if (settings.warm_start && previous.size() == n && scale > 0) {
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i)
@@ -118,8 +116,9 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
     }
     int iterations = 0;
     for (;;) {
-        // Compression with the current velocities. The error counts only
-        // compression: a free surface may expand (Bender & Koschier 2017, sec. 4).
+        // The compression rate with the current velocities, and the source
+        // each particle's stiffness answers: the predicted density error
+        // (density solve) or the rate itself (divergence solve).
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
             Real rate = 0;
@@ -128,8 +127,7 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
             if (walls)
                 for (std::uint32_t e = walls->start[i]; e < walls->start[i + 1]; ++e)
                     rate += glm::dot(wall_gradient_[e], state.velocity[i]);
-            source_[i] =
-                target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
+            source_[i] = target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
         }
         // The residual of a pressure that must stay >= 0: compression
         // anywhere, and expansion where there is pressure to give back.
@@ -146,17 +144,18 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
         const bool converged = error <= tolerance && iterations >= settings.min_iterations;
         if (converged || iterations >= settings.max_iterations)
             break;
-        // Relaxed, projected Jacobi. Relaxed: the plain Jacobi update (the
-        // factor ignores how neighbours respond) overshoots and, with the
-        // 20-40 neighbours of our kernels, diverges in a deep tank; half of it
-        // converges, as in IISPH (Ihmsen et al. 2014, omega = 0.5). Projected:
-        // the summed stiffness (a pressure) never goes below zero, so the fluid
-        // does not pull itself together, but an expanding particle gives back
-        // pressure it was given before, which the warm start would otherwise
-        // only ever add to.
+            // Relaxed, projected Jacobi. Relaxed: the plain Jacobi update (the
+            // factor ignores how neighbours respond) overshoots and, with the
+            // 20-40 neighbours of our kernels, diverges in a deep tank; half of it
+            // converges, as in IISPH (Ihmsen et al. 2014, omega = 0.5). Projected:
+            // the summed stiffness (a pressure) never goes below zero, so the fluid
+            // does not pull itself together, but an expanding particle gives back
+            // pressure it was given before, which the warm start would otherwise
+            // only ever add to.
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
-            const Real updated = std::max(sum[i] + jacobi_relaxation * source_[i] * factor_[i], Real(0));
+            const Real updated =
+                std::max(sum[i] + jacobi_relaxation * source_[i] * factor_[i], Real(0));
             stiffness_[i] = updated - sum[i];
             sum[i] = updated;
         }
@@ -213,8 +212,8 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     const std::size_t n = state.size();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
-        state.pressure[i] = state.density[i] * state.density[i] *
-                            (stiffness_sum_[i] + divergence_sum_[i]) / dt;
+        state.pressure[i] =
+            state.density[i] * state.density[i] * (stiffness_sum_[i] + divergence_sum_[i]) / dt;
     previous_dt_ = dt;
     // 5. Move; the reflecting box stays behind the wall particles as a last guard.
     drift(dt, state);

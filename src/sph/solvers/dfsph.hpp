@@ -47,10 +47,10 @@ class DfsphSolver final : public Solver<D> {
     // Arrays this solver alone needs, sized to the particles; they live here,
     // not in State.
     // (units in dfsph.cpp)
-    std::vector<Real> factor_;          // 1 / S_i
-    std::vector<Real> stiffness_;       // s_i of this iteration
-    std::vector<Real> stiffness_sum_;   // s_i summed over the density solve
-    std::vector<Real> divergence_sum_;  // s_i summed over the divergence solve
+    std::vector<Real> factor_;         // 1 / S_i
+    std::vector<Real> stiffness_;      // s_i of this iteration
+    std::vector<Real> stiffness_sum_;  // s_i summed over the density solve
+    std::vector<Real> divergence_sum_; // s_i summed over the divergence solve
     std::vector<Real> previous_stiffness_, previous_divergence_; // last step's sums
     Real previous_dt_ = 0;
     std::vector<Real> source_;          // the compression rate to remove

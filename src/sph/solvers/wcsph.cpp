@@ -11,13 +11,12 @@ namespace {
 
 // Density by summation over fluid and wall particles, then Tait's pressure.
 template <int D, class Kernel>
-void density_and_pressure(const Params<D>& params, const Kernel& kernel,
-                          StepContext<D>& context, State<D>& state) {
+void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
+                          State<D>& state) {
     context.find_neighbours(state.position, params.h);
     compute_density(params, kernel, context.neighbours, state);
     if (context.boundary)
-        add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours,
-                             state);
+        add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours, state);
     compute_pressure_tait(params, state);
 }
 

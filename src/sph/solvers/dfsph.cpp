@@ -1,9 +1,9 @@
 #include "sph/solvers/dfsph.hpp"
 
 #include "sph/boundary.hpp"
-#include "sph/density.hpp"
 #include "sph/integrate.hpp"
 #include "sph/pair_direction.hpp"
+#include "sph/solvers/density_with_walls.hpp"
 #include "sph/viscosity.hpp"
 
 #include <algorithm>
@@ -32,10 +32,7 @@ template <class Kernel>
 void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
                              State<D>& state) {
     const std::size_t n = state.size();
-    context.find_neighbours(state.position, params.h);
-    compute_density(params, kernel, context.neighbours, state);
-    if (context.boundary)
-        add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours, state);
+    find_neighbours_and_density(params, kernel, context, state);
 
     factor_.resize(n);
     stiffness_.resize(n);
@@ -226,11 +223,7 @@ void DfsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
                                    StepContext<D>& context) {
     // Density at the current positions; pressure stays the last solve's.
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
-        context.find_neighbours(state.position, params.h);
-        compute_density(params, kernel, context.neighbours, state);
-        if (context.boundary)
-            add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours,
-                                 state);
+        find_neighbours_and_density(params, kernel, context, state);
     });
 }
 

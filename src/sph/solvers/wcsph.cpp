@@ -1,8 +1,8 @@
 #include "sph/solvers/wcsph.hpp"
 
-#include "sph/density.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/pressure_acceleration.hpp"
+#include "sph/solvers/density_with_walls.hpp"
 #include "sph/viscosity.hpp"
 
 namespace sph {
@@ -13,10 +13,7 @@ namespace {
 template <int D, class Kernel>
 void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
                           State<D>& state) {
-    context.find_neighbours(state.position, params.h);
-    compute_density(params, kernel, context.neighbours, state);
-    if (context.boundary)
-        add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours, state);
+    find_neighbours_and_density(params, kernel, context, state);
     compute_pressure_tait(params, state);
 }
 

@@ -137,7 +137,7 @@ constexpr std::size_t tiny_3d_particles = 216;
 const std::string stats_header =
     "frame,time,steps,dt,particles,density_avg,density_max,density_error_avg_pct,"
     "density_error_max_pct,kinetic_energy,max_speed,dt_min,dt_max,pressure_iterations,"
-    "divergence_iterations,state_hash,wall_s";
+    "divergence_iterations,retries,state_hash,wall_s";
 
 fs::path write_scene(const TempFolder& tmp, const std::string& text,
                      const std::string& name = "scene.json") {
@@ -154,7 +154,7 @@ void check_run_outputs(const fs::path& out, int dimension, std::size_t particles
     REQUIRE(stats.rows.size() == frames);
     for (std::size_t k = 0; k < frames; ++k) {
         INFO("frame " << k);
-        REQUIRE(stats.rows[k].size() == 17);
+        REQUIRE(stats.rows[k].size() == 18);
         CHECK(stats.number(k, "frame") == double(k));
         CHECK(stats.number(k, "particles") == double(particles));
         const double time = stats.number(k, "time");
@@ -450,12 +450,12 @@ TEST_CASE("a run that blows up exits 3, names the step and particle, keeps its f
     const auto result = run_blowing_up(tmp, out);
     INFO(result.output);
     REQUIRE(result.exit_code == 3);
-    CHECK(contains(result.output, "non-finite at step "));
+    CHECK(contains(result.output, "unstable at step "));
     CHECK(contains(result.output, "particle "));
 
     const json run = json::parse(read_text(out / "run.json"));
-    CHECK(run.at("status") == "non_finite");
-    CHECK(contains(run.at("error").get<std::string>(), "non-finite"));
+    CHECK(run.at("status") == "unstable");
+    CHECK(contains(run.at("error").get<std::string>(), "retried 4 times"));
     const auto frames = run.at("frames").get<std::size_t>();
     CHECK(frames >= 1);
     CHECK(frames < 40); // it stopped early
@@ -678,5 +678,62 @@ TEST_CASE("compare exits 2 on bad input, naming the file or the flag", "[cli]") 
         expect_refused({ref.string(), ref.string(), "--diff", diff.string()},
                        {"--diff", diff.string()});
         CHECK_FALSE(fs::exists(diff.parent_path()));
+    }
+}
+
+// Fails while the output folder is out/ joined with any text from the scene.
+TEST_CASE("output.name picks the folder under out/ and cannot leave it", "[cli]") {
+    TempFolder tmp;
+    const fs::path work = tmp / "work";
+    fs::create_directories(work);
+    auto run_in_work = [&](const std::string& scene, const std::string& file = "scene.json") {
+        write_text(work / file, scene);
+        return sphclip(tmp, {"run", file, "--no-png", "--no-mp4", "--quiet"}, work);
+    };
+    const std::string scene_start = tiny_2d.substr(0, tiny_2d.rfind('}'));
+
+    SECTION("a name inside out/") {
+        const auto result = run_in_work(scene_start + R"(, "output": {"name": "named/run"}})");
+        INFO(result.output);
+        REQUIRE(result.exit_code == 0);
+        CHECK(fs::exists(work / "out/named/run/stats.csv"));
+        CHECK_FALSE(fs::exists(work / "out/scene"));
+    }
+    SECTION("a name with \"..\" exits 2 and writes nothing anywhere") {
+        const auto result = run_in_work(scene_start + R"(, "output": {"name": "../escape"}})");
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "scene.json: output.name: \"../escape\""));
+        CHECK_FALSE(fs::exists(work / "out"));
+        CHECK_FALSE(fs::exists(work / "escape"));
+        CHECK_FALSE(fs::exists(tmp / "escape"));
+    }
+    SECTION("an absolute name exits 2") {
+        const fs::path target = tmp / "absolute";
+        const auto result = run_in_work(
+            fmt::format(R"({}, "output": {{"name": "{}"}}}})", scene_start, target.string()));
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "output.name"));
+        CHECK_FALSE(fs::exists(target));
+    }
+    SECTION("a scene file named ...json, whose stem is \"..\"") {
+        const auto result = run_in_work(tiny_2d, "...json");
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "output.name"));
+        CHECK_FALSE(fs::exists(work / "out"));
+        CHECK_FALSE(fs::exists(tmp / "stats.csv"));
+    }
+    SECTION("--out still goes anywhere the user says") {
+        write_text(work / "scene.json", scene_start + R"(, "output": {"name": "../escape"}})");
+        const fs::path out = tmp / "elsewhere";
+        // The scene's own name is still checked: it is part of the scene.
+        CHECK(run_scene(tmp, work / "scene.json", out).exit_code == 2);
+        write_text(work / "scene.json", tiny_2d);
+        const auto result = run_scene(tmp, work / "scene.json", out);
+        INFO(result.output);
+        CHECK(result.exit_code == 0);
+        CHECK(fs::exists(out / "stats.csv"));
     }
 }

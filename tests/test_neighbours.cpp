@@ -1,11 +1,18 @@
 // Equivalence of the neighbour searches with brute force (STYLE.md point 13),
-// on random clouds in 2D and 3D, negative coordinates included.
+// on random clouds and lattices in 2D and 3D, negative coordinates included;
+// the sorted grid also with 1 and 2 threads.
 #include "sph/neighbours/all_pairs.hpp"
+#include "sph/neighbours/sorted_grid.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <omp.h>
 #include <random>
+#include <tuple>
 
 using namespace sph;
 
@@ -44,6 +51,71 @@ void check_equal_to_brute_force(const std::vector<Vec<D>>& x, Real radius) {
     // Reusing the search and the list gives the same again.
     hash.find(x, radius, got);
     CHECK(as_sorted_rows(got) == as_sorted_rows(expected));
+}
+
+// A lattice of side^D particles at spacing dp from `origin`, stored in a
+// random order (as in CompactNSearch's benchmark).
+template <int D>
+std::vector<Vec<D>> shuffled_lattice(std::size_t side, Real dp, Real origin, unsigned seed) {
+    std::vector<Vec<D>> x;
+    const std::size_t n = D == 2 ? side * side : side * side * side;
+    for (std::size_t k = 0; k < n; ++k) {
+        Vec<D> p;
+        std::size_t rest = k;
+        for (int a = 0; a < D; ++a, rest /= side)
+            p[a] = origin + (Real(rest % side) + 0.5) * dp;
+        x.push_back(p);
+    }
+    std::shuffle(x.begin(), x.end(), std::mt19937(seed));
+    return x;
+}
+
+bool rows_ascending(const NeighbourList& list) {
+    for (std::size_t i = 0; i < list.particle_count(); ++i) {
+        auto row = list.of(i);
+        if (!std::is_sorted(row.begin(), row.end()) ||
+            std::adjacent_find(row.begin(), row.end()) != row.end())
+            return false;
+    }
+    return true;
+}
+
+// The sorted grid lists exactly the pairs brute force and the hash list, each
+// row already ascending. (The hash is left out for cell coordinates past
+// 64-bit integers, which it does not handle.)
+template <int D>
+void check_sorted_grid(const std::vector<Vec<D>>& x, Real radius, bool with_hash = true) {
+    NeighbourList expected, hashed, got;
+    AllPairs<D>().find(x, radius, expected);
+    SortedGrid<D> grid;
+    grid.find(x, radius, got);
+    REQUIRE(got.particle_count() == x.size());
+    CHECK(got.pair_count() == expected.pair_count());
+    CHECK(rows_ascending(got));
+    CHECK(as_sorted_rows(got) == as_sorted_rows(expected));
+    if (with_hash) {
+        SpatialHash<D>().find(x, radius, hashed);
+        CHECK(as_sorted_rows(got) == as_sorted_rows(hashed));
+    }
+    // The cell order is a permutation of the particles.
+    std::vector<std::uint32_t> order = grid.order();
+    std::sort(order.begin(), order.end());
+    std::vector<std::uint32_t> identity(x.size());
+    std::iota(identity.begin(), identity.end(), 0u);
+    CHECK(order == identity);
+    // Reusing the search and the list gives the same again.
+    grid.find(x, radius, got);
+    CHECK(as_sorted_rows(got) == as_sorted_rows(expected));
+}
+
+// The sorted grid's lists and cell order with the given number of threads.
+template <int D>
+auto lists_with_threads(int threads, const std::vector<Vec<D>>& x, Real radius) {
+    omp_set_num_threads(threads);
+    SortedGrid<D> grid;
+    NeighbourList list;
+    grid.find(x, radius, list);
+    return std::tuple(list.start, list.index, grid.order());
 }
 
 } // namespace
@@ -91,4 +163,147 @@ TEST_CASE("neighbour lists are symmetric", "[neighbours]") {
             auto row = list.of(j);
             CHECK(std::find(row.begin(), row.end(), i) != row.end());
         }
+}
+
+TEST_CASE("sorted grid neighbours equal brute force and the hash in 2D", "[neighbours]") {
+    check_sorted_grid<2>(random_cloud<2>(2000, 0, 1, 1), 0.05);
+    check_sorted_grid<2>(random_cloud<2>(2000, -1, -0.2, 2), 0.04);
+    check_sorted_grid<2>(random_cloud<2>(2000, -0.5, 0.5, 3), 0.03);
+    // Far from the origin, on both sides.
+    check_sorted_grid<2>(random_cloud<2>(1000, 1e4, 1e4 + 1, 4), 0.05);
+    check_sorted_grid<2>(random_cloud<2>(1000, -1e4 - 1, -1e4, 5), 0.05);
+    // Lattices: radius 2.6 spacings (20 neighbours), and exactly 2 spacings,
+    // where the pairs at exactly the radius must be left out as brute force does.
+    check_sorted_grid<2>(shuffled_lattice<2>(40, 0.01, 0, 6), 0.026);
+    check_sorted_grid<2>(shuffled_lattice<2>(40, 1.0 / 64, -0.3, 7), 2.0 / 64);
+    check_sorted_grid<2>(shuffled_lattice<2>(30, 0.001, 1e4, 8), 0.0026);
+}
+
+TEST_CASE("sorted grid neighbours equal brute force and the hash in 3D", "[neighbours]") {
+    check_sorted_grid<3>(random_cloud<3>(3000, 0, 1, 9), 0.12);
+    check_sorted_grid<3>(random_cloud<3>(3000, -1, -0.1, 10), 0.1);
+    check_sorted_grid<3>(random_cloud<3>(3000, -0.5, 0.5, 11), 0.1);
+    check_sorted_grid<3>(random_cloud<3>(1000, 1e4, 1e4 + 1, 12), 0.15);
+    check_sorted_grid<3>(random_cloud<3>(1000, -1e4 - 1, -1e4, 13), 0.15);
+    check_sorted_grid<3>(shuffled_lattice<3>(14, 1.0 / 128, 0, 14), 2.0 / 128);
+    check_sorted_grid<3>(shuffled_lattice<3>(12, 0.01, -5, 15), 0.022);
+    check_sorted_grid<3>(shuffled_lattice<3>(10, 0.001, -1e4, 16), 0.002);
+}
+
+TEST_CASE("sorted grid neighbours of degenerate clouds", "[neighbours]") {
+    // Every particle in one cell, including coincident ones.
+    auto one_cell = random_cloud<3>(300, 0.1, 0.1001, 17);
+    one_cell.push_back(one_cell[0]);
+    one_cell.push_back(one_cell[0]);
+    check_sorted_grid<3>(one_cell, 0.5);
+    // A single particle has no neighbour; an empty cloud gives an empty list.
+    NeighbourList list;
+    SortedGrid<3> grid;
+    grid.find(std::vector<Vec<3>>{Vec<3>(1, 2, 3)}, 0.1, list);
+    CHECK(list.particle_count() == 1);
+    CHECK(list.pair_count() == 0);
+    CHECK(grid.order() == std::vector<std::uint32_t>{0});
+    grid.find(std::vector<Vec<3>>{}, 0.1, list);
+    CHECK(list.particle_count() == 0);
+    CHECK(grid.order().empty());
+    // Strictly closer than the radius.
+    grid.find(std::vector<Vec<3>>{Vec<3>(0, 0, 0), Vec<3>(0.25, 0, 0)}, 0.25, list);
+    CHECK(list.pair_count() == 0);
+    // Coincident particles only, and a radius of zero.
+    SortedGrid<2> grid2;
+    NeighbourList list2;
+    grid2.find(std::vector<Vec<2>>(5, Vec<2>(-3, 7)), 0.1, list2);
+    CHECK(list2.pair_count() == 20);
+    grid2.find(std::vector<Vec<2>>(5, Vec<2>(-3, 7)), 0, list2);
+    CHECK(list2.particle_count() == 5);
+    CHECK(list2.pair_count() == 0);
+}
+
+TEST_CASE("sorted grid neighbours stay exact over huge and sparse boxes", "[neighbours]") {
+    // A stray particle far away: too many cells for a table, so the occupied
+    // cells are hashed.
+    auto stray = random_cloud<3>(800, -1, 1, 18);
+    stray.push_back(Vec<3>(300, 0, 0));
+    SortedGrid<3> grid;
+    NeighbourList list;
+    grid.find(stray, 0.15, list);
+    CHECK(grid.hashed_cells());
+    check_sorted_grid<3>(stray, 0.15);
+    // Wider than 2^21 cells along x and in 2D along both axes: coarser cells
+    // there, still exact.
+    auto huge = random_cloud<3>(800, 0, 1, 19);
+    huge.push_back(Vec<3>(1e9, 0.5, 0.5));
+    huge.push_back(Vec<3>(1e9 + 0.01, 0.5, 0.5));
+    check_sorted_grid<3>(huge, 0.1);
+    auto huge2 = random_cloud<2>(800, -1, 1, 20);
+    huge2.push_back(Vec<2>(1e15, -1e15));
+    huge2.push_back(Vec<2>(-1e300, 1e300));
+    check_sorted_grid<2>(huge2, 0.05, false);
+    // A dense box of the same particles uses the table.
+    grid.find(random_cloud<3>(800, -1, 1, 18), 0.15, list);
+    CHECK_FALSE(grid.hashed_cells());
+    // Non-finite positions are nobody's neighbour and do not disturb the rest.
+    auto broken = random_cloud<2>(500, 0, 1, 21);
+    broken[3] = Vec<2>(std::nan(""), 0.5);
+    broken[7] = Vec<2>(std::numeric_limits<Real>::infinity(), 0.5);
+    check_sorted_grid<2>(broken, 0.05, false);
+}
+
+TEST_CASE("sorted grid neighbour lists are the same with 1 and 2 threads", "[neighbours]") {
+    const int before = omp_get_max_threads();
+    const auto x3 = shuffled_lattice<3>(20, 0.01, -0.1, 22);
+    const auto x2 = random_cloud<2>(20000, -1, 1, 23);
+    const auto one3 = lists_with_threads<3>(1, x3, 0.02), two3 = lists_with_threads<3>(2, x3, 0.02);
+    const auto one2 = lists_with_threads<2>(1, x2, 0.02), two2 = lists_with_threads<2>(2, x2, 0.02);
+    omp_set_num_threads(before);
+    CHECK(one3 == two3);
+    CHECK(one2 == two2);
+}
+
+TEST_CASE("sorted grid neighbours: particles stored in cell order stay in place", "[neighbours]") {
+    // What a spatial sort of the particle arrays by order() relies on: sorting
+    // again changes nothing, and the lists are the same up to renaming.
+    const auto x = shuffled_lattice<3>(16, 0.01, 0, 24);
+    SortedGrid<3> grid;
+    NeighbourList list, sorted_list;
+    grid.find(x, 0.02, list);
+    const std::vector<std::uint32_t> order = grid.order();
+    std::vector<Vec<3>> sorted(x.size());
+    std::vector<std::uint32_t> rank(x.size());
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        sorted[k] = x[order[k]];
+        rank[order[k]] = static_cast<std::uint32_t>(k);
+    }
+    grid.find(sorted, 0.02, sorted_list);
+    std::vector<std::uint32_t> identity(x.size());
+    std::iota(identity.begin(), identity.end(), 0u);
+    CHECK(grid.order() == identity);
+    bool same = true;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        std::vector<std::uint32_t> renamed;
+        for (std::uint32_t j : list.of(i))
+            renamed.push_back(rank[j]);
+        std::sort(renamed.begin(), renamed.end());
+        auto row = sorted_list.of(rank[i]);
+        same = same && std::vector<std::uint32_t>(row.begin(), row.end()) == renamed;
+    }
+    CHECK(same);
+    // Nothing is reallocated when the particles move a little.
+    const auto* index = sorted_list.index.data();
+    const auto* order_data = grid.order().data();
+    for (auto& p : sorted)
+        p += Vec<3>(0.0004, -0.0003, 0.0002);
+    grid.find(sorted, 0.02, sorted_list);
+    CHECK(sorted_list.index.data() == index);
+    CHECK(grid.order().data() == order_data);
+}
+
+TEST_CASE("every neighbour search name makes that search", "[neighbours]") {
+    const auto names = neighbour_search_names();
+    CHECK(std::find(names.begin(), names.end(), "sorted_grid") != names.end());
+    for (const auto& name : names) {
+        CHECK(make_neighbour_search<2>(name)->name() == name);
+        CHECK(make_neighbour_search<3>(name)->name() == name);
+    }
+    CHECK_THROWS_AS(make_neighbour_search<3>("octree"), std::invalid_argument);
 }

@@ -489,3 +489,134 @@ TEST_CASE("3D scenes take 3-vectors and refuse 2-vectors", "[scene]") {
         CHECK(e->field == "effects.gravity (from --set)");
     }
 }
+
+// Each fails while the value slips past the checks (NaN compares false with
+// every limit) or overflows a cast or a loop in derive().
+TEST_CASE("extreme numbers are refused before anything is allocated", "[scene]") {
+    struct Extreme {
+        const char* name;
+        json scene;
+        const char* field;   // the field the error must name
+        const char* problem; // a part of the problem it must state
+    };
+    const auto start = std::chrono::steady_clock::now();
+    const auto extreme = GENERATE(values<Extreme>({
+        {"1e45 particles in 3D, far below the coordinate limit",
+         json::parse(R"({"dimension": 3, "domain": {"min": [0, 0, 0], "max": [1e7, 1e7, 1e7]},
+                         "fluid": {"spacing": 1e-8,
+                                   "blocks": [{"min": [0, 0, 0], "max": [1e7, 1e7, 1e7]}]}})"),
+         "fluid", "1e+45 particles"},
+        {"1e300 m blocks", json::parse(R"({"domain": {"min": [0, 0], "max": [1e300, 1e300]},
+                         "fluid": {"blocks": [{"min": [0, 0], "max": [1e300, 1e300]}]}})"),
+         "domain", "too far from the origin"},
+        {"a domain wider than the largest double",
+         json::parse(R"({"domain": {"min": [-1e308, 0], "max": [1e308, 1]},
+                         "fluid": {"spacing": 1e300, "blocks": [{"min": [0, 0], "max": [1, 1]}]}})"),
+         "domain", "beyond the range of a double"},
+        {"0 particles on one axis times infinitely many on the other",
+         json::parse(R"({"domain": {"min": [0, 0], "max": [1e-300, 1e300]},
+                         "fluid": {"spacing": 1e290, "smoothing_ratio": 10,
+                                   "blocks": [{"min": [0, 0], "max": [1e-300, 1e300]}]}})"),
+         "fluid.blocks[0]", "thinner than one spacing"},
+        {"a support of 1e300 spacings", with(json::object(), "/fluid/smoothing_ratio", 1e300),
+         "fluid.smoothing_ratio", "spacings"},
+        {"a support of 1000 spacings (a lattice sum of 2e9 terms)",
+         with(with(json::object(), "/dimension", 3), "/fluid/smoothing_ratio", 1000),
+         "fluid.smoothing_ratio", "must be 1 to 20"},
+        {"a support below one spacing", with(json::object(), "/fluid/smoothing_length", 1e-300),
+         "fluid.smoothing_length", "no neighbour"},
+        {"1e308 s of clip", with(json::object(), "/duration", 1e308), "duration", "frames"},
+        {"a mass beyond a double", json::parse(R"({"domain": {"min": [0, 0], "max": [100, 100]},
+                         "material": {"rest_density": 1e308},
+                         "fluid": {"spacing": 10, "blocks": [{"min": [0, 0], "max": [50, 50]}]}})"),
+         "material.rest_density", "particle mass"},
+        {"a mass that rounds to 0", with(json::object(), "/material/rest_density", 1e-320),
+         "material.rest_density", "particle mass"},
+        {"an infinite speed of sound",
+         with(with(json::object(), "/material/bulk_modulus", 1e308), "/material/rest_density",
+              1e-10),
+         "material.bulk_modulus", "speed of sound"},
+        {"boundary particles in a 10 km tank", json::parse(R"({"solver": {"name": "wcsph"},
+                         "domain": {"min": [0, 0, 0], "max": [1e4, 1e4, 1e4]}, "dimension": 3,
+                         "fluid": {"spacing": 0.01,
+                                   "blocks": [{"min": [0, 0, 0], "max": [0.05, 0.05, 0.05]}]}})"),
+         "domain", "boundary particles"},
+    }));
+    INFO(extreme.name);
+    const auto e = error_of(extreme.scene);
+    REQUIRE(e);
+    INFO(e->what());
+    CHECK(e->field == extreme.field);
+    CHECK(contains(e->problem, extreme.problem));
+    CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 0.5);
+}
+
+TEST_CASE("a refused particle count names the count and the memory it needs", "[scene]") {
+    const auto e = error_of(with(json::object(), "/fluid/spacing", 1e-12));
+    REQUIRE(e);
+    CHECK(e->field == "fluid");
+    // 0.05715 m x 0.1143 m at 1e-12 m: 6.53e21 particles.
+    CHECK(contains(e->problem, "6.53e+21 particles"));
+    CHECK(contains(e->problem, "GiB of memory"));
+}
+
+TEST_CASE("output.name names the output folder under out/", "[scene]") {
+    SECTION("by default the scene's name") {
+        CHECK_FALSE(parse(small_2d()).output.name);
+        CHECK(sph::output_folder(parse(small_2d())) == "out/default");
+        CHECK(sph::to_json(parse(small_2d()))["output"]["name"] == "default");
+    }
+    SECTION("a relative path inside out/") {
+        const Scene s = parse(with(small_2d(), "/output/name", "studies/run 1"));
+        REQUIRE(s.output.name);
+        CHECK(sph::output_folder(s) == "out/studies/run 1");
+        CHECK(sph::to_json(s)["output"]["name"] == "studies/run 1");
+    }
+    SECTION("a name leading outside out/ is refused") {
+        for (const char* name : {"../escape", "/tmp/escape", "a/../../b", ""}) {
+            INFO(name);
+            const auto e = error_of(with(small_2d(), "/output/name", name));
+            REQUIRE(e);
+            CHECK(e->file == label);
+            CHECK(e->field == "output.name");
+            CHECK(contains(e->problem, "inside out/"));
+        }
+    }
+    SECTION("also from --set, which says so") {
+        const auto e = error_of(small_2d(), {{"output.name", "../../etc"}});
+        REQUIRE(e);
+        CHECK(e->field == "output.name (from --set)");
+    }
+    SECTION("a name that is not a string, or not UTF-8") {
+        const auto number = error_of(with(small_2d(), "/output/name", 3));
+        REQUIRE(number);
+        CHECK(contains(number->problem, "expected a string"));
+        const auto bytes = error_of(small_2d(), {{"output.name", "caf\xe9"}});
+        REQUIRE(bytes);
+        CHECK(contains(bytes->problem, "UTF-8"));
+    }
+    SECTION("a scene file whose own name would leave out/") {
+        Scene s = parse(small_2d());
+        s.name = ".."; // the stem of "...json"
+        CHECK_THROWS_AS(sph::output_folder(s), InputError);
+    }
+}
+
+// Fails while an unknown key or value of megabytes is compared letter by
+// letter with every known one, or dumped whole into the message.
+TEST_CASE("a huge unknown key, value or nesting is refused quickly and briefly", "[scene]") {
+    const auto start = std::chrono::steady_clock::now();
+    const std::string long_word(1 << 20, 'k');
+    const auto key = error_of_text("{\"" + long_word + "\": 1}");
+    REQUIRE(key);
+    CHECK(contains(key->problem, "unknown key"));
+    const auto value = error_of_text("{\"solver\": {\"name\": \"" + long_word + "\"}}");
+    REQUIRE(value);
+    CHECK(value->problem.size() < 300);
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    const auto nested = error_of_text("{\"fps\": " + deep + "}");
+    REQUIRE(nested);
+    CHECK(nested->field == "fps");
+    CHECK(nested->problem.size() < 200);
+    CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 5);
+}

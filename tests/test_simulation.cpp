@@ -66,14 +66,15 @@ TEST_CASE("a 3D drop keeps every particle inside the box", "[simulation]") {
 }
 
 TEST_CASE("frames: advance_to stops at the first step at or past the time", "[simulation]") {
-    auto sim = make_simulation<2>(small_dam_break({{"solver.dt", "0.003"}}));
-    sim.advance_to(0.01);
-    CHECK(sim.steps() == 4); // 3 steps reach 0.009, the 4th 0.012
-    CHECK(sim.time() == Approx(0.012));
-    sim.advance_to(0.012); // already there
+    auto sim = make_simulation<2>(small_dam_break({{"solver.dt", "0.0003"}}));
+    sim.advance_to(0.001);
+    CHECK(sim.steps() == 4); // 3 steps reach 0.0009, the 4th 0.0012
+    CHECK(sim.time() == Approx(0.0012));
+    sim.advance_to(0.0012); // already there
     CHECK(sim.steps() == 4);
-    sim.advance_to(0.03); // exactly 10 steps, up to rounding
+    sim.advance_to(0.003); // exactly 10 steps, up to rounding
     CHECK(sim.steps() == 10);
+    CHECK(sim.take_counters().retries == 0);
 }
 
 TEST_CASE("one thread and two threads give the same bits", "[simulation]") {
@@ -103,17 +104,135 @@ TEST_CASE("a non-finite state stops the run and names the particle", "[simulatio
     auto sim = make_simulation<2>(small_dam_break({{"solver.dt", "1e-4"}}));
     sim.step();
     sim.state().velocity[7].y = std::numeric_limits<Real>::quiet_NaN();
-    const Real expected_time = 2e-4;
     try {
         sim.step();
-        FAIL("no NonFiniteError");
-    } catch (const NonFiniteError& e) {
+        FAIL("no UnstableError");
+    } catch (const UnstableError& e) {
         CHECK(e.step == 2);
-        CHECK(e.time == Approx(expected_time));
-        CHECK(std::isnan(e.value));
-        CHECK((e.quantity.starts_with("acceleration") || e.quantity.starts_with("velocity")));
+        CHECK(e.time == Approx(1e-4)); // the time the failed step started from
+        CHECK(e.retries == 4);         // the default watchdog.retries, all failed
+        CHECK(e.dt == Approx(1e-4 / 16));
+        CHECK(std::isnan(e.problem.value));
+        CHECK((e.problem.quantity.starts_with("acceleration") ||
+               e.problem.quantity.starts_with("velocity")));
         CHECK(std::string(e.what()).find("particle") != std::string::npos);
+        CHECK(std::string(e.what()).find("Try a smaller solver.dt") != std::string::npos);
     }
+}
+
+namespace {
+
+// A solver that moves particles at constant velocity and turns one NaN when
+// its step is longer than `breaks_above`: a stand-in for a scheme that is
+// stable only below some dt, so the watchdog's retries can be watched.
+class FragileSolver final : public Solver<2> {
+  public:
+    explicit FragileSolver(Real breaks_above) : breaks_above_(breaks_above) {}
+    std::string_view name() const override { return "fragile"; }
+    TimeStepModel time_step_model() const override { return {}; }
+    StepReport step(const Params<2>&, Real dt, State<2>& state, StepContext<2>&) override {
+        ++calls;
+        for (std::size_t i = 0; i < state.size(); ++i)
+            state.position[i] += dt * state.velocity[i];
+        if (dt > breaks_above_)
+            state.velocity[3].x = std::numeric_limits<Real>::quiet_NaN();
+        return {};
+    }
+    void update_fields(const Params<2>&, State<2>&, StepContext<2>&) override {}
+    int calls = 0;
+
+  private:
+    Real breaks_above_;
+};
+
+Simulation<2> fragile_simulation(Real breaks_above, FragileSolver*& solver) {
+    const Scene scene = small_dam_break({{"solver.dt", "0.004"}});
+    const Derived derived = derive(scene);
+    auto owned = std::make_unique<FragileSolver>(breaks_above);
+    solver = owned.get();
+    State<2> state = make_initial_state<2>(scene, derived);
+    for (auto& v : state.velocity)
+        v = {0.1, 0};
+    for (auto& rho : state.density)
+        rho = 1000;
+    return Simulation<2>(make_params<2>(scene, derived), std::move(state), std::move(owned),
+                         make_neighbour_search<2>("hash"), {});
+}
+
+} // namespace
+
+TEST_CASE("the watchdog retries a failed step in halves from the saved state", "[simulation]") {
+    FragileSolver* solver = nullptr;
+    // Stable only at a quarter of the scene's fixed 4 ms: two retries (2 then 4 pieces).
+    auto sim = fragile_simulation(0.0011, solver);
+    const Vec<2> x0 = sim.state().position[0];
+    sim.step();
+    CHECK(solver->calls == 1 + 1 + 4); // a try stops at its first failed piece
+    CHECK(sim.steps() == 4);           // only the accepted quarter steps count
+    CHECK(sim.time() == Approx(0.004));
+    // Restored and redone: the particle moved by the whole 4 ms, once.
+    CHECK(sim.state().position[0].x == Approx(x0.x + 0.1 * 0.004));
+    for (const auto& v : sim.state().velocity)
+        CHECK(v.x == 0.1);
+    const StepCounters counters = sim.take_counters();
+    CHECK(counters.retries == 2);
+    CHECK(counters.steps == 4);
+    CHECK(counters.dt_max == Approx(0.001));
+    // Fixed dt: frames still land on multiples of dt.
+    sim.advance_to(0.012);
+    CHECK(sim.time() == Approx(0.012));
+    CHECK(sim.steps() == 12);
+}
+
+TEST_CASE("the watchdog stops when every retry fails, naming what and where", "[simulation]") {
+    FragileSolver* solver = nullptr;
+    auto sim = fragile_simulation(1e-6, solver); // 4 ms / 16 is still too long
+    try {
+        sim.step();
+        FAIL("no UnstableError");
+    } catch (const UnstableError& e) {
+        CHECK(solver->calls == 5); // every try fails at its first piece
+        CHECK(e.step == 1);
+        CHECK(e.time == 0);
+        CHECK(e.retries == 4);
+        CHECK(e.dt == Approx(0.004 / 16));
+        CHECK(e.problem.quantity == "velocity.x");
+        CHECK(e.problem.particle == sim.state().id[3]);
+        const std::string message = e.what();
+        CHECK(message.find("step 1 ") != std::string::npos);
+        CHECK(message.find("velocity.x") != std::string::npos);
+        CHECK(message.find("retried 4 times") != std::string::npos);
+    }
+}
+
+TEST_CASE("the watchdog flags a particle that jumps past its neighbourhood", "[simulation]") {
+    const Scene scene = small_dam_break({{"solver.dt", "1e-4"}});
+    auto sim = make_simulation<2>(scene);
+    sim.step();
+    const Real h = sim.params().h;
+    // 2 h in one step of 10 ms (2.9 m/s, a plausible speed).
+    sim.state().velocity[5] = {2 * h / 1e-2, 0};
+    auto problem = inspect_step(sim.params(), sim.state(), 1e-2);
+    REQUIRE(problem);
+    CHECK(problem->quantity == "displacement / h");
+    CHECK(problem->value == Approx(2));
+    CHECK(problem->particle == sim.state().id[5]);
+    // Faster than this scene's physics allows (twice sound speed + free fall).
+    const Real limit = sim.params().watchdog.max_speed;
+    CHECK(limit == Approx(2 * (std::sqrt(2e5 / 1000) + std::sqrt(2 * 9.81 * 0.4))));
+    sim.state().velocity[5] = {0, 1.5 * limit};
+    problem = inspect_step(sim.params(), sim.state(), 1e-7);
+    REQUIRE(problem);
+    CHECK(problem->quantity == "speed");
+    CHECK(problem->value == Approx(1.5 * limit));
+    sim.state().velocity[5] = {0, 0};
+    sim.state().density[9] = 11 * scene.material.rest_density;
+    problem = inspect_step(sim.params(), sim.state(), 1e-4);
+    REQUIRE(problem);
+    CHECK(problem->quantity == "density");
+    CHECK(problem->limit == Approx(10 * scene.material.rest_density));
+    sim.state().density[9] = scene.material.rest_density;
+    CHECK_FALSE(inspect_step(sim.params(), sim.state(), 1e-4));
 }
 
 TEST_CASE("a block without gravity or walls keeps its momentum and centre", "[simulation]") {

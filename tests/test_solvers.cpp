@@ -126,10 +126,10 @@ TEST_CASE("the adaptive step follows the CFL, viscous and force conditions", "[s
     // Forces: 0.25 sqrt(h / a).
     CHECK(stable_time_step(settings, scales, {.carries_sound = false}, {0, 10}) ==
           Approx(0.25 * std::sqrt(0.02 / 10)));
-    // Viscosity: 0.125 h^2 rho0 / mu.
+    // Viscosity: 0.125 (h/2)^2 rho0 / mu (Morris's smoothing length is h / 2).
     scales.viscosity = 1000;
     CHECK(stable_time_step(settings, scales, {.carries_sound = false}, {0, 0}) ==
-          Approx(0.125 * 0.02 * 0.02));
+          Approx(0.125 * 0.01 * 0.01));
     // Bounds.
     settings.dt_min = 1e-3;
     CHECK(stable_time_step(settings, scales, {.carries_sound = true}, {1e6, 0}) == 1e-3);

@@ -7,7 +7,7 @@ enum ExitCode : int {
     exit_success = 0,
     exit_failure = 1,       // anything else: disk full, internal error
     exit_bad_input = 2,     // command line, scene file, --set, output folder
-    exit_non_finite = 3,    // the simulation produced NaN or infinity
+    exit_unstable = 3,      // a step failed the watchdog even halved (NaN, blow-up, collapse)
     exit_no_gl_context = 4, // no headless OpenGL context could be made
     exit_interrupted = 130, // SIGINT or SIGTERM: outputs so far are finalised
 };

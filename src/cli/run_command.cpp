@@ -133,7 +133,8 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
          {{"smoothing_length", derived.h},
           {"mass", derived.mass},
           {"dt", derived.dt},
-          {"sound_speed", derived.sound_speed}}},
+          {"sound_speed", derived.sound_speed},
+          {"max_speed", derived.max_speed}}},
         {"particles", sim.state().size()},
         {"threads", omp_get_max_threads()},
         {"solver", std::string(sim.solver().name())},
@@ -238,17 +239,14 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             ++written;
             progress.update(k, frames, sim.time(), sim.steps(), wall());
         }
-    } catch (const NonFiniteError& e) {
+    } catch (const UnstableError& e) {
         progress.done();
         finish_sinks();
         record_timings();
-        record.save("non_finite", written, sim.steps(), sim.time(), wall(), e.what());
-        fmt::print(stderr,
-                   "sphclip: error: {}\nsphclip: the {} frames before it are kept in {}. Try a "
-                   "smaller solver.dt, a smaller material.bulk_modulus or a larger "
-                   "material.viscosity.\n",
+        record.save("unstable", written, sim.steps(), sim.time(), wall(), e.what());
+        fmt::print(stderr, "sphclip: error: {}\nsphclip: the {} frames before it are kept in {}.\n",
                    e.what(), written, folder.string());
-        return exit_non_finite;
+        return exit_unstable;
     } catch (const std::exception& e) {
         // Disk full, encoder failure: finalise what can be, record why, exit 1.
         progress.done();
@@ -278,7 +276,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
 int run_command(const RunOptions& options) {
     const Scene scene = options.scene ? load_scene(*options.scene, options.overrides)
                                       : default_scene(options.overrides);
-    const fs::path folder = options.out ? *options.out : fs::path("out") / scene.name;
+    const fs::path folder = options.out ? *options.out : output_folder(scene);
     // The GL context before any output: when none can be made, nothing is written.
     std::unique_ptr<GlContext> gl_context;
     if (options.png || options.mp4)

@@ -34,7 +34,7 @@ std::string status_of(const ChildRunResult& result) {
     switch (result.exit_code) {
     case exit_success:
         return "ok";
-    case exit_non_finite:
+    case exit_unstable:
         return "unstable";
     case exit_interrupted:
         return "interrupted";

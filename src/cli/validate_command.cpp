@@ -37,7 +37,7 @@ std::string status_of(const ChildRunResult& result) {
     switch (result.exit_code) {
     case exit_success:
         return "completed";
-    case exit_non_finite:
+    case exit_unstable:
         return "unstable";
     case exit_interrupted:
         return "interrupted";
@@ -183,9 +183,9 @@ int validate_command(const ValidateOptions& options) {
             fmt::print("{:<15} solver={:<6} {} (exit {}) after {:.1f}s\n", c.name, solver, status,
                        result.exit_code, wall);
             fmt::print("    {}\n", error_line(result.log));
-            unstable |= result.exit_code == exit_non_finite;
+            unstable |= result.exit_code == exit_unstable;
             bad_input |= result.exit_code == exit_bad_input;
-            failed |= result.exit_code != exit_non_finite && result.exit_code != exit_bad_input &&
+            failed |= result.exit_code != exit_unstable && result.exit_code != exit_bad_input &&
                       result.exit_code != exit_interrupted;
         }
         summary += fmt::format(
@@ -203,7 +203,7 @@ int validate_command(const ValidateOptions& options) {
     if (bad_input)
         return exit_bad_input;
     if (unstable)
-        return exit_non_finite;
+        return exit_unstable;
     return failed ? exit_failure : exit_success;
 }
 

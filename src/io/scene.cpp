@@ -1,6 +1,7 @@
 #include "io/scene.hpp"
 
 #include "io/input_error.hpp"
+#include "io/scene_paths.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
@@ -43,30 +44,80 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 }
 
 std::string closest(std::string_view word, const std::vector<std::string>& candidates) {
+    // Only suggest what is plausibly a typo.
+    const std::size_t limit = std::max<std::size_t>(2, word.size() / 2);
     std::string best;
     std::size_t best_distance = std::string::npos;
     for (const auto& c : candidates) {
+        // The distance is at least the difference in length: a long hostile
+        // word is not compared letter by letter with every key.
+        const std::size_t shortest =
+            std::max(word.size(), c.size()) - std::min(word.size(), c.size());
+        if (shortest > limit)
+            continue;
         const std::size_t d = edit_distance(word, c);
         if (d < best_distance) {
             best_distance = d;
             best = c;
         }
     }
-    // Only suggest what is plausibly a typo.
-    return best_distance <= std::max<std::size_t>(2, word.size() / 2) ? best : std::string();
+    return best_distance <= limit ? best : std::string();
+}
+
+// Compact JSON text of `value`, stopped soon after `limit` characters: a huge
+// or deeply nested value is neither serialised whole nor recursed into deeper
+// than the limit (each level adds a bracket).
+void append_short(const json& value, std::string& out, std::size_t limit) {
+    if (!value.is_structured()) {
+        // A --set string need not be UTF-8: replaced, not thrown on.
+        out += value.dump(-1, ' ', false, json::error_handler_t::replace);
+        return;
+    }
+    const bool array = value.is_array();
+    out += array ? '[' : '{';
+    for (auto it = value.begin(); it != value.end() && out.size() <= limit; ++it) {
+        if (it != value.begin())
+            out += ',';
+        if (!array)
+            out += json(it.key()).dump(-1, ' ', false, json::error_handler_t::replace) + ':';
+        append_short(*it, out, limit);
+    }
+    out += array ? ']' : '}';
 }
 
 std::string describe(const json& value) {
-    std::string text = value.dump();
+    std::string text;
+    append_short(value, text, 40);
     if (text.size() > 40)
         text = text.substr(0, 37) + "...";
     return fmt::format("{} ({})", value.type_name(), text);
 }
 
+// A string from the scene as messages quote it: a hostile one can be long.
+std::string shortened(const std::string& text) {
+    return text.size() <= 40 ? text : text.substr(0, 37) + "...";
+}
+
 // "fluid.blocks[3].min" -> "fluid.blocks[].min": the key's place in the schema.
+// By hand, not std::regex (slow, and recursive per character): it runs for
+// every key of every block.
 std::string generic_path(const std::string& path) {
-    static const std::regex index(R"(\[\d+\])");
-    return std::regex_replace(path, index, "[]");
+    std::string out;
+    out.reserve(path.size());
+    for (std::size_t i = 0; i < path.size(); ++i) {
+        if (path[i] == '[') {
+            std::size_t end = i + 1;
+            while (end < path.size() && path[end] >= '0' && path[end] <= '9')
+                ++end;
+            if (end > i + 1 && end < path.size() && path[end] == ']') {
+                out += "[]";
+                i = end;
+                continue;
+            }
+        }
+        out += path[i];
+    }
+    return out;
 }
 
 // "a.b" encloses "a.b", "a.b.c" and "a.b[2]".
@@ -181,11 +232,22 @@ class FieldReader {
         if (std::find(allowed.begin(), allowed.end(), text) == allowed.end()) {
             const auto guess = closest(text, allowed);
             fail(path,
-                 fmt::format("unknown value \"{}\"{}; expected one of: {}", text,
+                 fmt::format("unknown value \"{}\"{}; expected one of: {}", shortened(text),
                              guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess),
                              fmt::join(allowed, ", ")));
         }
         return text;
+    }
+
+    std::optional<std::string> optional_text(const std::string& path,
+                                             const std::string& default_text, const char* doc) {
+        record(path, "string", "", default_text, doc);
+        const json* v = find(path);
+        if (!v)
+            return std::nullopt;
+        if (!v->is_string())
+            fail(path, "expected a string, got " + describe(*v));
+        return v->get<std::string>();
     }
 
     Vec3 vector(const std::string& path, const Vec3& fallback, int dimension, const char* unit,
@@ -420,14 +482,23 @@ std::string override_path(const std::string& key) {
     return std::regex_replace(key, index, "[$1]");
 }
 
+// The limits a scene is checked against (README, "Scene files").
+const std::filesystem::path output_root = "out";
+constexpr double max_frames = 1e7;
+constexpr double max_support = 20;      // h in spacings
+constexpr double max_particles = 4.0e9; // fluid or boundary; indices are 32-bit
+
+double neighbours_within(int dimension, double radius) {
+    return dimension == 2 ? M_PI * radius * radius : 4.0 / 3.0 * M_PI * std::pow(radius, 3);
+}
+
 double default_smoothing_ratio(int dimension) {
     return dimension == 2 ? 2.5 : 2.2;
 }
 
 // Rough memory of one particle: state, neighbour list, hash lookup, snapshot.
 double bytes_per_particle(int dimension, double smoothing_ratio) {
-    const double neighbours = dimension == 2 ? M_PI * smoothing_ratio * smoothing_ratio
-                                             : 4.0 / 3.0 * M_PI * std::pow(smoothing_ratio, 3);
+    const double neighbours = neighbours_within(dimension, smoothing_ratio);
     return 3 * dimension * 8 + 2 * 8 + 4 + 4 * neighbours + 4 + 8 + 4 + 2 * dimension * 8 + 2 * 8 +
            4;
 }
@@ -546,6 +617,25 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.solver.neighbour_search = r.choice("solver.neighbour_search", d.solver.neighbour_search,
                                          neighbour_search_names(), "Neighbour search.");
 
+    s.watchdog.retries =
+        r.integer("watchdog.retries", d.watchdog.retries, 0, 20,
+                  "Times a step that fails the watchdog is retried, halved each time, "
+                  "before the run stops with exit code 3.");
+    s.watchdog.max_density_ratio =
+        r.number("watchdog.max_density_ratio", d.watchdog.max_density_ratio, "",
+                 "Density over rest density above which a step counts as failed (a collapse).",
+                 Bound::positive);
+    s.watchdog.max_displacement =
+        r.number("watchdog.max_displacement", d.watchdog.max_displacement, "h",
+                 "Support radii a particle may move in one step before the step counts as "
+                 "failed (the CFL condition broken).",
+                 Bound::positive);
+    s.watchdog.max_speed = r.optional_number(
+        "watchdog.max_speed", "m/s", "auto",
+        "Speed above which a step counts as failed. Default: twice the sum of the sound "
+        "speed, the speed of a fall over the whole domain and the fastest initial velocity.",
+        Bound::positive);
+
     // A scene that gives an `effects` object gets exactly the effects it lists.
     const auto gravity = r.optional_vector(
         "effects.gravity", dim, "m/s^2", format_vector(*d.effects.gravity, dim),
@@ -595,6 +685,21 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.render.camera.fov = r.number("render.camera.fov", d.render.camera.fov, "degrees",
                                    "Vertical field of view (3D scenes).", Bound::positive);
 
+    s.output.name = r.optional_text(
+        "output.name", "the scene file's name",
+        "Output folder under out/ when run has no --out: a relative path that stays inside "
+        "out/ (not absolute, no \"..\").");
+    if (s.output.name) {
+        try {
+            resolve_inside(output_root, *s.output.name, file, "output.name");
+            json(*s.output.name).dump(); // run.json records it: UTF-8 or a type_error
+        } catch (const InputError& e) {
+            r.fail("output.name", e.problem);
+        } catch (const json::type_error&) {
+            r.fail("output.name", "is not valid UTF-8");
+        }
+    }
+
     r.reject_unknown_keys();
     if (docs)
         *docs = r.docs();
@@ -614,10 +719,21 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     if (s.solver.name == "seed" && s.solver.walls == "particles")
         r.fail("solver.walls", "the seed solver's walls reflect; boundary particles are for "
                                "wcsph and dfsph");
-    for (int a = 0; a < dim; ++a)
+    // Past this the frame counter's conversion from floating point overflows,
+    // and the per-frame records outgrow any disk.
+    if (!(s.duration * s.fps <= max_frames))
+        r.fail("duration",
+               fmt::format("duration x fps gives {:.3g} frames; a clip has at most {:.0f}",
+                           s.duration * s.fps, max_frames));
+    for (int a = 0; a < dim; ++a) {
         if (!(s.domain.min[a] < s.domain.max[a]))
             r.fail("domain", fmt::format("min must be below max on every axis (axis {}: {} >= {})",
                                          "xyz"[a], s.domain.min[a], s.domain.max[a]));
+        if (!std::isfinite(s.domain.max[a] - s.domain.min[a]))
+            r.fail("domain", fmt::format("the size along axis {} ({} to {}) is beyond the range of "
+                                         "a double",
+                                         "xyz"[a], s.domain.min[a], s.domain.max[a]));
+    }
     if (s.render.camera.fov >= 180)
         r.fail("render.camera.fov",
                fmt::format("must be below 180 degrees, got {}", s.render.camera.fov));
@@ -625,6 +741,26 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         r.fail("fluid.blocks", "the scene has no fluid: give at least one block");
     const double ratio = s.fluid.smoothing_ratio.value_or(default_smoothing_ratio(dim));
     const double h = s.fluid.smoothing_length.value_or(ratio * s.fluid.spacing);
+    // h in spacings sets the neighbours per particle and the reach of the
+    // lattice sum in derive(); an overflowed h is infinitely many spacings.
+    const double support = h / s.fluid.spacing;
+    if (!(support >= 1 && support <= max_support))
+        r.fail(s.fluid.smoothing_length ? "fluid.smoothing_length" : "fluid.smoothing_ratio",
+               fmt::format("the support radius h = {} m is {:.3g} spacings of {} m; it must be 1 "
+                           "to {:g} (below 1 a particle has no neighbour, above {:g} it has over "
+                           "{:.0f} in {}D)",
+                           h, support, s.fluid.spacing, max_support, max_support,
+                           neighbours_within(dim, max_support), dim));
+    // Cells are indexed by 64-bit integers: keep coordinates / h far from overflow.
+    for (int a = 0; a < dim; ++a)
+        if (std::max(std::abs(s.domain.min[a]), std::abs(s.domain.max[a])) / h > 1e15)
+            r.fail("domain",
+                   fmt::format("coordinates up to {} m are too far from the origin for "
+                               "h = {} m",
+                               std::max(std::abs(s.domain.min[a]), std::abs(s.domain.max[a])), h));
+    // Counts in floating point, so that absurd requests are caught before any
+    // cast or allocation; each axis on its own, so that 0 x infinity (NaN)
+    // cannot slip past the limits below.
     double total = 0;
     for (std::size_t i = 0; i < s.fluid.blocks.size(); ++i) {
         const auto& b = s.fluid.blocks[i];
@@ -639,46 +775,100 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
                 r.fail(p,
                        fmt::format("the block [{}, {}] on axis {} is outside the domain [{}, {}]",
                                    b.min[a], b.max[a], "xyz"[a], s.domain.min[a], s.domain.max[a]));
-            // In floating point so that absurd requests are caught before any cast.
-            count *= std::floor((b.max[a] - b.min[a]) / s.fluid.spacing + 1e-9);
+            const double along = std::floor((b.max[a] - b.min[a]) / s.fluid.spacing + 1e-9);
+            if (!(along >= 1))
+                r.fail(p, fmt::format("the block is thinner than one spacing ({} m) on axis {} and "
+                                      "holds no particle",
+                                      s.fluid.spacing, "xyz"[a]));
+            count *= along;
         }
-        if (count < 1)
-            r.fail(p, fmt::format("the block is thinner than one spacing ({} m) and holds no "
-                                  "particle",
-                                  s.fluid.spacing));
         total += count;
     }
-    const double bytes = total * bytes_per_particle(dim, h / s.fluid.spacing);
+    // Boundary particles (solver.walls = particles) fill layers around the
+    // domain, and their lookup grid covers it.
+    const bool wall_particles =
+        s.solver.walls == "particles" || (s.solver.walls == "auto" && s.solver.name != "seed");
+    double boundary = 0, grid_cells = 0;
+    if (wall_particles) {
+        const double layers = std::ceil(support);
+        double outer = 1, inner = 1;
+        grid_cells = 1;
+        for (int a = 0; a < dim; ++a) {
+            const double inside =
+                std::floor((s.domain.max[a] - s.domain.min[a]) / s.fluid.spacing + 1e-9);
+            outer *= inside + 2 * layers;
+            inner *= inside;
+            grid_cells *= std::floor((inside + 2 * layers) / support) + 1;
+        }
+        boundary = outer - inner;
+    }
+    const double fluid_bytes = total * bytes_per_particle(dim, support);
+    const double wall_bytes = boundary * (2 * dim * 8 + 8 + 8 + 4) + grid_cells * 8;
     const double available = physical_memory_bytes();
-    if (total > 4.0e9 || (available > 0 && bytes > 0.8 * available))
-        r.fail("fluid", fmt::format("the blocks would hold {:.3g} particles, needing about {:.3g} "
-                                    "GiB of memory (this machine has {:.3g} GiB); use a larger "
-                                    "fluid.spacing or smaller blocks",
-                                    total, bytes / (1 << 30), available / (1 << 30)));
-    // Cells are indexed by 64-bit integers: keep coordinates / h far from overflow.
-    for (int a = 0; a < dim; ++a)
-        if (std::max(std::abs(s.domain.min[a]), std::abs(s.domain.max[a])) / h > 1e15)
-            r.fail("domain",
-                   fmt::format("coordinates up to {} m are too far from the origin for "
-                               "h = {} m",
-                               std::max(std::abs(s.domain.min[a]), std::abs(s.domain.max[a])), h));
+    const double bytes = fluid_bytes + wall_bytes;
+    if (!(total <= max_particles) || !(boundary <= max_particles) ||
+        (available > 0 && !(bytes <= 0.8 * available))) {
+        const std::string walls =
+            wall_particles ? fmt::format(" and the walls {:.3g} boundary particles", boundary) : "";
+        r.fail(fluid_bytes >= wall_bytes ? "fluid" : "domain",
+               fmt::format("the blocks would hold {:.3g} particles{}, needing about {:.3g} GiB of "
+                           "memory (this machine has {:.3g} GiB); use a larger fluid.spacing, "
+                           "smaller blocks{}",
+                           total, walls, bytes / (1 << 30), available / (1 << 30),
+                           wall_particles ? " or a smaller domain" : ""));
+    }
+    // Extreme but valid values can still give derived ones a run cannot use.
+    const Derived derived = derive(s);
+    if (!(std::isfinite(derived.mass) && derived.mass > 0))
+        r.fail("material.rest_density",
+               fmt::format("the particle mass rho0 / (sum of W on the lattice) is {} kg for "
+                           "rho0 = {} kg/m^3 and h = {} m; give values nearer to each other",
+                           derived.mass, s.material.rest_density, h));
+    if (!std::isfinite(derived.sound_speed))
+        r.fail(
+            "material.bulk_modulus",
+            fmt::format("the speed of sound sqrt(K / rho0) overflows for K = {} Pa and rho0 = {} "
+                        "kg/m^3",
+                        s.material.bulk_modulus, s.material.rest_density));
     return s;
 }
 
-json parse_json_text(const std::string& text, const std::string& file) {
-    // The keys being read, so an error inside a value can name its field.
+// Follows the keys down to where a parse stops, to name the field of an error
+// inside a value. Builds nothing.
+struct KeyTracker : nlohmann::json_sax<json> {
     std::vector<std::string> keys;
-    auto track = [&keys](int, json::parse_event_t event, json& parsed) {
-        if (event == json::parse_event_t::object_start)
-            keys.emplace_back();
-        else if (event == json::parse_event_t::object_end && !keys.empty())
-            keys.pop_back();
-        else if (event == json::parse_event_t::key && !keys.empty())
-            keys.back() = parsed.get<std::string>();
+    bool null() override { return true; }
+    bool boolean(bool) override { return true; }
+    bool number_integer(number_integer_t) override { return true; }
+    bool number_unsigned(number_unsigned_t) override { return true; }
+    bool number_float(number_float_t, const string_t&) override { return true; }
+    bool string(string_t&) override { return true; }
+    bool binary(binary_t&) override { return true; }
+    bool start_object(std::size_t) override {
+        keys.emplace_back();
         return true;
-    };
+    }
+    bool key(string_t& name) override {
+        keys.back() = name;
+        return true;
+    }
+    bool end_object() override {
+        keys.pop_back();
+        return true;
+    }
+    bool start_array(std::size_t) override { return true; }
+    bool end_array() override { return true; }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+};
+
+json parse_json_text(const std::string& text, const std::string& file) {
     try {
-        return json::parse(text, track, true, /*ignore_comments=*/true);
+        // Without a callback: nlohmann's callback parser rescans a list at the
+        // end of each of its objects, 11 s for a list of 20,000 under the
+        // sanitizers (tests/fuzz/regressions/hand-many-blocks.json).
+        return json::parse(text, nullptr, true, /*ignore_comments=*/true);
     } catch (const json::parse_error& e) {
         // Line and column from the byte offset nlohmann reports.
         const std::size_t offset = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
@@ -692,12 +882,15 @@ json parse_json_text(const std::string& text, const std::string& file) {
         throw InputError(
             file, "", fmt::format("invalid JSON at line {}, column {}: {}", line, column, detail));
     } catch (const json::exception& e) {
-        // e.g. a number too large for a double
+        // e.g. a number too large for a double: parsed again for its field.
         std::string detail = e.what();
         if (auto bracket = detail.find("] "); bracket != std::string::npos)
             detail = detail.substr(bracket + 2);
+        KeyTracker tracker;
+        json::sax_parse(text, &tracker, json::input_format_t::json, true,
+                        /*ignore_comments=*/true);
         std::string field;
-        for (const auto& k : keys)
+        for (const auto& k : tracker.keys)
             field += (field.empty() ? "" : ".") + k;
         throw InputError(file, field, detail);
     }
@@ -793,6 +986,26 @@ Derived derive(const Scene& s) {
         d.mass = s.material.rest_density / sum;
     }
     d.sound_speed = std::sqrt(s.material.bulk_modulus / s.material.rest_density);
+    {
+        // The fastest a motion of this scene can physically be: the sound
+        // speed, a free fall over the whole box, and the fastest start; twice
+        // that is garbage, however small the step (watchdog.max_speed).
+        double g = 0, height = 0, v0 = 0;
+        for (int a = 0; a < dim; ++a) {
+            if (s.effects.gravity)
+                g += (*s.effects.gravity)[a] * (*s.effects.gravity)[a];
+            height = std::max(height, s.domain.max[a] - s.domain.min[a]);
+        }
+        for (const auto& b : s.fluid.blocks) {
+            double v2 = 0;
+            for (int a = 0; a < dim; ++a)
+                v2 += b.velocity[a] * b.velocity[a];
+            v0 = std::max(v0, std::sqrt(v2));
+        }
+        d.max_speed = s.watchdog.max_speed
+                          ? *s.watchdog.max_speed
+                          : 2 * (d.sound_speed + std::sqrt(2 * std::sqrt(g) * height) + v0);
+    }
     d.fixed_dt = s.solver.dt.has_value();
     if (s.solver.dt) {
         d.dt = *s.solver.dt;
@@ -814,6 +1027,19 @@ Derived derive(const Scene& s) {
         d.particles += count;
     }
     return d;
+}
+
+std::filesystem::path output_folder(const Scene& s) {
+    if (s.output.name)
+        return resolve_inside(output_root, *s.output.name, s.file, "output.name");
+    // The default, the scene file's name, is checked only here: "...json" is "..".
+    try {
+        return resolve_inside(output_root, s.name, s.file, "output.name");
+    } catch (const InputError& e) {
+        throw InputError(e.file, e.field,
+                         e.problem + " (the default: the scene file's name); give output.name "
+                                     "or --out");
+    }
 }
 
 json to_json(const Scene& s) {
@@ -862,6 +1088,11 @@ json to_json(const Scene& s) {
           {"max_iterations", s.solver.max_iterations},
           {"warm_start", s.solver.warm_start},
           {"neighbour_search", s.solver.neighbour_search}}},
+        {"watchdog",
+         {{"retries", s.watchdog.retries},
+          {"max_density_ratio", s.watchdog.max_density_ratio},
+          {"max_displacement", s.watchdog.max_displacement},
+          {"max_speed", s.watchdog.max_speed ? json(*s.watchdog.max_speed) : json()}}},
         {"effects", effects},
         {"render",
          {{"size", s.render.size},
@@ -877,6 +1108,7 @@ json to_json(const Scene& s) {
            {{"position", optional_vec(s.render.camera.position)},
             {"target", optional_vec(s.render.camera.target)},
             {"fov", s.render.camera.fov}}}}},
+        {"output", {{"name", s.output.name.value_or(s.name)}}},
     };
 }
 

@@ -24,7 +24,7 @@ struct FluidBlock {
 };
 
 struct Scene {
-    std::string name = "default";        // output folder name: the file's stem
+    std::string name = "default";        // the file's stem; the output folder's default name
     std::string file = "built-in scene"; // where it came from, for messages
 
     int dimension = 2;     // 2 or 3
@@ -68,6 +68,14 @@ struct Scene {
         std::string neighbour_search = "hash";
     } solver;
 
+    // The per-step checks (sph/watchdog.hpp).
+    struct Watchdog {
+        int retries = 4;                // halvings of a failed step before exit 3
+        double max_density_ratio = 10;  // rho / rho0 that counts as a collapse
+        double max_displacement = 1;    // support radii a particle may move per step
+        std::optional<double> max_speed; // m/s; default from the scene (Derived::max_speed)
+    } watchdog;
+
     // Each present key is an effect in the step; an absent one costs nothing.
     struct Effects {
         std::optional<Vec3> gravity = Vec3{0, -9.81, 0}; // m/s^2
@@ -89,6 +97,10 @@ struct Scene {
             double fov = 40;              // degrees, vertical (3D)
         } camera;
     } render;
+
+    struct Output {
+        std::optional<std::string> name; // folder under out/; default the scene's name
+    } output;
 };
 
 // Values derived from the scene (documented in the README).
@@ -100,6 +112,7 @@ struct Derived {
     std::string kernel;     // solver.kernel resolved
     std::string walls;      // solver.walls resolved
     double sound_speed = 0; // m/s, sqrt(K / rho0)
+    double max_speed = 0;   // m/s, watchdog.max_speed resolved
     std::size_t particles = 0;
 };
 
@@ -121,6 +134,10 @@ Scene default_scene(const std::vector<Override>& overrides);
 // Parses scene text (the part of load_scene after reading the file).
 Scene parse_scene(const std::string& text, const std::string& file_label,
                   const std::vector<Override>& overrides);
+
+// out/<output.name>, by default out/<scene name>: where `sphclip run` writes
+// without --out. Throws InputError when the name would lead outside out/.
+std::filesystem::path output_folder(const Scene& scene);
 
 // Every key with type, unit, default and meaning.
 std::vector<KeyDoc> scene_keys();

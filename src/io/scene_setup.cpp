@@ -33,6 +33,8 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.pressure_solve = {scene.solver.tolerance, scene.solver.divergence_tolerance,
                         scene.solver.min_iterations, scene.solver.max_iterations,
                         scene.solver.warm_start};
+    p.watchdog = {scene.watchdog.retries, scene.watchdog.max_density_ratio,
+                  scene.watchdog.max_displacement, derived.max_speed};
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     return p;
 }

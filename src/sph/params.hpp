@@ -6,6 +6,7 @@
 #include "sph/vec.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace sph {
 
@@ -35,6 +36,14 @@ struct PressureSolveSettings {
     bool warm_start = false; // start from the last step's pressure
 };
 
+// The per-step checks and their retries (watchdog.hpp).
+struct WatchdogSettings {
+    int retries = 4;             // halvings of a failed step before the run stops
+    Real max_density_ratio = 10; // rho / rho0 above which the fluid is collapsing
+    Real max_displacement = 1;   // support radii a particle may move in one step
+    Real max_speed = std::numeric_limits<Real>::infinity(); // m/s: beyond it, garbage
+};
+
 template <int D>
 struct Params {
     Real mass = 0;                 // kg, of every particle
@@ -50,6 +59,7 @@ struct Params {
     WallModel walls = WallModel::reflect;
     TimeStepSettings time_step;
     PressureSolveSettings pressure_solve;
+    WatchdogSettings watchdog;
 
     Real sound_speed() const { return std::sqrt(bulk_modulus / rest_density); }
 };

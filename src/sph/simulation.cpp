@@ -27,18 +27,43 @@ Real Simulation<D>::next_dt() const {
 }
 
 template <int D>
+std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
+    for (int k = 0; k < count; ++k) {
+        auto ctx = context();
+        const StepReport report = solver_->step(params_, dt, state_, ctx);
+        ++steps_;
+        ++counters_.steps;
+        counters_.dt_min = std::min(counters_.dt_min, dt);
+        counters_.dt_max = std::max(counters_.dt_max, dt);
+        counters_.dt_sum += dt;
+        counters_.pressure_iterations += report.pressure_iterations;
+        counters_.divergence_iterations += report.divergence_iterations;
+        if (auto problem = inspect_step(params_, state_, dt))
+            return problem;
+    }
+    return std::nullopt;
+}
+
+template <int D>
 void Simulation<D>::step_by(Real dt) {
-    auto ctx = context();
-    const StepReport report = solver_->step(params_, dt, state_, ctx);
-    ++steps_;
+    // Copy assignment reuses saved_'s memory: no allocation once sizes settle.
+    saved_ = state_;
+    const std::uint64_t steps_before = steps_;
+    const StepCounters counters_before = counters_;
+    for (int retry = 0;; ++retry) {
+        const int pieces = 1 << retry;
+        auto problem = try_steps(dt / Real(pieces), pieces);
+        if (!problem)
+            break;
+        if (retry >= params_.watchdog.retries)
+            throw UnstableError(steps_before + 1, time_, std::move(*problem), retry,
+                                dt / Real(pieces));
+        state_ = saved_;
+        steps_ = steps_before;
+        counters_ = counters_before;
+        counters_.retries += std::uint64_t(retry) + 1;
+    }
     time_ += dt;
-    ++counters_.steps;
-    counters_.dt_min = std::min(counters_.dt_min, dt);
-    counters_.dt_max = std::max(counters_.dt_max, dt);
-    counters_.dt_sum += dt;
-    counters_.pressure_iterations += report.pressure_iterations;
-    counters_.divergence_iterations += report.divergence_iterations;
-    check_finite(state_, steps_, time_);
 }
 
 template <int D>
@@ -46,7 +71,7 @@ void Simulation<D>::step() {
     step_by(next_dt());
     // Fixed dt: time from the step count, so no rounding accumulates.
     if (params_.time_step.fixed)
-        time_ = Real(steps_) * params_.time_step.dt;
+        time_ = Real(++fixed_steps_) * params_.time_step.dt;
 }
 
 template <int D>

@@ -5,9 +5,9 @@
 // a fixed one; callers take frames at times they choose, which the steps
 // land on exactly.
 
-#include "sph/checks.hpp"
 #include "sph/solvers/solver.hpp"
 #include "sph/step_counters.hpp"
+#include "sph/watchdog.hpp"
 
 #include <cstdint>
 #include <memory>
@@ -22,8 +22,10 @@ class Simulation {
     Simulation(const Params<D>& params, State<D> initial, std::unique_ptr<Solver<D>> solver,
                std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects);
 
-    // One step of the largest stable dt (or the fixed one), then the finite
-    // check (throws NonFiniteError).
+    // One step of the largest stable dt (or the fixed one). The watchdog
+    // checks it; a failed step is retried from the state before it, split in
+    // 2, 4, ... equal steps (watchdog.retries times), so that time still
+    // advances by the same dt. Throws UnstableError when every retry fails.
     void step();
     // One step towards time t, shortened so that the steps land on t exactly.
     void step_toward(Real t);
@@ -55,7 +57,10 @@ class Simulation {
     StepContext<D> context() {
         return {*search_, neighbours_, boundary(), boundary_neighbours_, effects_};
     }
+    // Advances by dt under the watchdog (see step()).
     void step_by(Real dt);
+    // Plain steps, checked after each; the first problem found, if any.
+    std::optional<StepProblem> try_steps(Real dt, int count);
 
     Params<D> params_;
     State<D> state_;
@@ -66,8 +71,10 @@ class Simulation {
     NeighbourList neighbours_;
     NeighbourList boundary_neighbours_;
     StepCounters counters_;
+    State<D> saved_; // the state before the step, for the watchdog's retries
     Real time_ = 0;
     std::uint64_t steps_ = 0;
+    std::uint64_t fixed_steps_ = 0; // fixed dt: time is this count times dt, free of rounding
 };
 
 } // namespace sph

@@ -15,6 +15,7 @@ struct StepCounters {
     Real dt_sum = 0;                                     // s
     std::uint64_t pressure_iterations = 0;               // summed over the steps
     std::uint64_t divergence_iterations = 0;             // summed over the steps
+    std::uint64_t retries = 0; // steps the watchdog rejected and retried halved
 
     Real dt_mean() const { return steps ? dt_sum / Real(steps) : 0; }
 };

@@ -8,25 +8,31 @@ namespace sph {
 
 template <int D>
 ExtremeRates measure_rates(const State<D>& state) {
-    Real v2 = 0, a2 = 0;
+    Real v2 = 0, a2 = 0, rho = 0;
     const std::size_t n = state.size();
-#pragma omp parallel for schedule(static) reduction(max : v2, a2)
+#pragma omp parallel for schedule(static) reduction(max : v2, a2, rho)
     for (std::size_t i = 0; i < n; ++i) {
         v2 = std::max(v2, squared_length<D>(state.velocity[i]));
         a2 = std::max(a2, squared_length<D>(state.acceleration[i]));
+        rho = std::max(rho, state.density[i]);
     }
-    return {std::sqrt(v2), std::sqrt(a2)};
+    return {std::sqrt(v2), std::sqrt(a2), rho};
 }
 
 Real stable_time_step(const TimeStepSettings& ts, const TimeStepScales& scales, TimeStepModel model,
                       ExtremeRates rates) {
     Real dt = ts.dt_max;
-    if (model.carries_sound)
-        dt = std::min(dt, ts.cfl * scales.h / (scales.sound_speed + rates.max_speed));
-    else if (rates.max_speed > 0)
+    if (model.carries_sound) {
+        const Real compression = std::max(rates.max_density / scales.rest_density, Real(1));
+        const Real c = scales.sound_speed * std::pow(compression, model.sound_speed_exponent);
+        dt = std::min(dt, ts.cfl * scales.h / (c + rates.max_speed));
+    } else if (rates.max_speed > 0)
         dt = std::min(dt, ts.cfl * scales.spacing / rates.max_speed);
-    if (scales.viscosity > 0)
-        dt = std::min(dt, 0.125 * scales.h * scales.h * scales.rest_density / scales.viscosity);
+    if (scales.viscosity > 0) {
+        // Morris et al.'s h is the smoothing length, half our support radius.
+        const Real smoothing = scales.h / 2;
+        dt = std::min(dt, 0.125 * smoothing * smoothing * scales.rest_density / scales.viscosity);
+    }
     if (rates.max_acceleration > 0)
         dt = std::min(dt, 0.25 * std::sqrt(scales.h / rates.max_acceleration));
     return std::max(dt, ts.dt_min);

@@ -3,10 +3,12 @@
 // bounded by solver.dt_min and solver.dt_max.
 //   - Courant-Friedrichs-Lewy: a signal crosses at most cfl of a length L per
 //     step. Weakly compressible solvers carry sound, so dt <= cfl h / (c + v_max)
-//     (Monaghan 1992, sec. 10.3); incompressible ones only move particles, so
-//     dt <= cfl d / v_max with d the particle spacing (Bender & Koschier 2017,
-//     sec. 5, with their 0.4).
-//   - Viscous diffusion: dt <= 0.125 h^2 / nu (Morris et al. 1997, eq. 11).
+//     (Monaghan 1992, sec. 10.3), c the sound speed at the largest density; incompressible ones
+//     only move particles, so dt <= cfl d / v_max with d the particle spacing (Bender & Koschier
+//     2017, sec. 5, with their 0.4).
+//   - Viscous diffusion: dt <= 0.125 l^2 / nu (Morris et al. 1997, eq. 11),
+//     l their smoothing length, h / 2 (with l = h, a 500 Pa.s paste blew up
+//     in the torture suite).
 //   - Forces: dt <= 0.25 sqrt(h / a_max) (Monaghan 1992), with the
 //     accelerations of the last step.
 
@@ -18,12 +20,17 @@ namespace sph {
 // What a solver tells the rule about itself.
 struct TimeStepModel {
     bool carries_sound = true; // weakly compressible: the sound speed limits dt
+    // How the sound speed grows with compression: c = c0 (rho / rho0)^n.
+    // 0 for the linear law; (gamma - 1) / 2 = 3 for Tait's (c^2 = dp/drho),
+    // whose sound speed at twice the rest density is 8 c0.
+    Real sound_speed_exponent = 0;
 };
 
 // Largest |v| and |a| over the particles.
 struct ExtremeRates {
     Real max_speed = 0;
     Real max_acceleration = 0;
+    Real max_density = 0; // kg/m^3
 };
 
 template <int D>

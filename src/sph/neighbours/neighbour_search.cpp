@@ -1,6 +1,7 @@
 #include "sph/neighbours/neighbour_search.hpp"
 
 #include "sph/neighbours/all_pairs.hpp"
+#include "sph/neighbours/sorted_grid.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
 
 #include <stdexcept>
@@ -8,13 +9,15 @@
 namespace sph {
 
 std::vector<std::string> neighbour_search_names() {
-    return {"hash", "all_pairs"};
+    return {"hash", "sorted_grid", "all_pairs"};
 }
 
 template <int D>
 std::unique_ptr<NeighbourSearch<D>> make_neighbour_search(std::string_view name) {
     if (name == "hash")
         return std::make_unique<SpatialHash<D>>();
+    if (name == "sorted_grid")
+        return std::make_unique<SortedGrid<D>>();
     if (name == "all_pairs")
         return std::make_unique<AllPairs<D>>();
     throw std::invalid_argument("unknown neighbour search: " + std::string(name));

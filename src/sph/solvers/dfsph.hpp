@@ -53,9 +53,10 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Real> divergence_sum_; // s_i summed over the divergence solve
     std::vector<Real> previous_stiffness_, previous_divergence_; // last step's sums
     Real previous_dt_ = 0;
-    std::vector<Real> source_;          // the compression rate to remove
-    std::vector<Vec<D>> gradient_;      // m grad W_ij per fluid pair (neighbour list order)
-    std::vector<Vec<D>> wall_gradient_; // rho0 V_b grad W_ib per wall pair
+    std::vector<Real> source_;              // the compression rate to remove
+    std::vector<Vec<D>> velocity_at_start_; // to restart a diverging solve
+    std::vector<Vec<D>> gradient_;          // m grad W_ij per fluid pair (neighbour list order)
+    std::vector<Vec<D>> wall_gradient_;     // rho0 V_b grad W_ib per wall pair
 };
 
 } // namespace sph

@@ -14,6 +14,11 @@ class WcsphSolver final : public ExplicitSolver<D> {
   public:
     explicit WcsphSolver(KernelKind kernel) : kernel_(kernel) {}
     std::string_view name() const override { return "wcsph"; }
+    // Tait's sound speed grows as (rho / rho0)^3: a compressed start needs
+    // far smaller steps than c0 suggests.
+    TimeStepModel time_step_model() const override {
+        return {.carries_sound = true, .sound_speed_exponent = 3};
+    }
     void update_fields(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
 
   protected:

@@ -1,0 +1,527 @@
+#include "sph/neighbours/sorted_grid.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <omp.h>
+#include <stdexcept>
+
+namespace sph {
+
+namespace {
+
+// Cells per axis at most: 21 bits an axis keep a 3D Morton code in 63 bits.
+constexpr std::uint32_t max_axis_cells = 1u << 21;
+// Cells a hair wider than the radius, so that rounding in (x - origin) / size
+// can never put two particles closer than the radius two cells apart.
+constexpr Real cell_widening = 1 + 0x1p-20;
+// A table indexed by Morton code while it needs at most this many entries per
+// particle (or min_table_keys); a sparser box hashes its occupied cells.
+constexpr std::size_t table_keys_per_particle = 8;
+constexpr std::size_t min_table_keys = 1 << 16;
+constexpr int radix_bits = 11;
+constexpr std::uint64_t empty_slot = ~std::uint64_t(0);
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Squared distances from p to the gathered candidates, summed in the order
+// glm::dot sums, so a pair is in or out exactly as in AllPairs. Separate
+// arrays and no aliasing: the loop vectorises.
+void squared_distances(std::size_t count, const Real* __restrict x, const Real* __restrict y,
+                       Real px, Real py, Real* __restrict out) {
+    for (std::size_t m = 0; m < count; ++m) {
+        const Real dx = x[m] - px, dy = y[m] - py;
+        out[m] = dx * dx + dy * dy;
+    }
+}
+
+void squared_distances(std::size_t count, const Real* __restrict x, const Real* __restrict y,
+                       const Real* __restrict z, Real px, Real py, Real pz, Real* __restrict out) {
+    for (std::size_t m = 0; m < count; ++m) {
+        const Real dx = x[m] - px, dy = y[m] - py, dz = z[m] - pz;
+        out[m] = dx * dx + dy * dy + dz * dz;
+    }
+}
+
+inline Real positive_part(Real v) {
+    return v > 0 ? v : 0;
+}
+
+// Squared distances from the candidates to a box [lo, hi], likewise (at most
+// one of the two parts of a gap is non-zero).
+void squared_gaps(std::size_t count, const Real* __restrict x, const Real* __restrict y, Real x_lo,
+                  Real x_hi, Real y_lo, Real y_hi, Real* __restrict out) {
+    for (std::size_t m = 0; m < count; ++m) {
+        const Real dx = positive_part(x_lo - x[m]) + positive_part(x[m] - x_hi);
+        const Real dy = positive_part(y_lo - y[m]) + positive_part(y[m] - y_hi);
+        out[m] = dx * dx + dy * dy;
+    }
+}
+
+void squared_gaps(std::size_t count, const Real* __restrict x, const Real* __restrict y,
+                  const Real* __restrict z, Real x_lo, Real x_hi, Real y_lo, Real y_hi, Real z_lo,
+                  Real z_hi, Real* __restrict out) {
+    for (std::size_t m = 0; m < count; ++m) {
+        const Real dx = positive_part(x_lo - x[m]) + positive_part(x[m] - x_hi);
+        const Real dy = positive_part(y_lo - y[m]) + positive_part(y[m] - y_hi);
+        const Real dz = positive_part(z_lo - z[m]) + positive_part(z[m] - z_hi);
+        out[m] = dx * dx + dy * dy + dz * dz;
+    }
+}
+
+// The candidates closer than r2, other than `self`, written without a branch
+// (a neighbour is ~1 candidate in 8, a branch on it mispredicts).
+std::uint32_t select_neighbours(std::size_t count, const Real* __restrict distance2,
+                                const std::uint32_t* __restrict index, Real r2, std::uint32_t self,
+                                std::uint32_t* __restrict row) {
+    std::uint32_t found = 0;
+    for (std::size_t m = 0; m < count; ++m) {
+        row[found] = index[m];
+        found += (distance2[m] < r2) & (index[m] != self);
+    }
+    return found;
+}
+
+// Sorts keys[0, bounds[runs]) made of `runs` sorted runs [bounds[r],
+// bounds[r + 1]) by merging them pairwise, branch-free (a merge of ~27 short
+// runs is several times cheaper than std::sort). Returns where the result
+// is: keys or buffer.
+std::uint64_t* merge_runs(std::uint64_t* keys, std::uint64_t* buffer, std::uint32_t* bounds,
+                          int runs) {
+    while (runs > 1) {
+        int merged = 0;
+        for (int r = 0; r < runs; r += 2, ++merged) {
+            const std::uint64_t *a = keys + bounds[r], *a_end = keys + bounds[r + 1];
+            const std::uint64_t *b = a_end, *b_end = r + 1 < runs ? keys + bounds[r + 2] : a_end;
+            std::uint64_t* to = buffer + bounds[r];
+            while (a < a_end && b < b_end) {
+                const bool take_b = *b < *a;
+                *to++ = take_b ? *b : *a;
+                a += !take_b;
+                b += take_b;
+            }
+            to = std::copy(a, a_end, to);
+            std::copy(b, b_end, to);
+            bounds[merged] = bounds[r];
+        }
+        bounds[merged] = bounds[runs];
+        runs = merged;
+        std::swap(keys, buffer);
+    }
+    return keys;
+}
+
+} // namespace
+
+template <int D>
+void SortedGrid<D>::set_up_morton(const std::array<std::uint32_t, D>& bits) {
+    if (morton_ready_ && bits == bits_)
+        return;
+    bits_ = bits;
+    morton_ready_ = true;
+    // Bit positions of each axis in the code, interleaved x y z x y z ...; an
+    // axis that needs fewer bits drops out, so a long thin box keeps short codes.
+    std::array<std::array<int, 21>, D> position{};
+    int next = 0;
+    for (std::uint32_t level = 0; level < 21; ++level) {
+        bool any = false;
+        for (int a = 0; a < D; ++a)
+            if (level < bits[a]) {
+                position[a][level] = next++;
+                any = true;
+            }
+        if (!any)
+            break;
+    }
+    for (int a = 0; a < D; ++a)
+        for (int byte = 0; byte < 3; ++byte)
+            for (std::uint32_t v = 0; v < 256; ++v) {
+                std::uint64_t code = 0;
+                for (std::uint32_t bit = 0; bit < 8; ++bit) {
+                    const std::uint32_t level = 8 * byte + bit;
+                    if ((v >> bit & 1) && level < bits[a])
+                        code |= std::uint64_t(1) << position[a][level];
+                }
+                spread_[a][byte][v] = code;
+            }
+}
+
+template <int D>
+std::uint64_t SortedGrid<D>::spread(int axis, std::uint32_t c) const {
+    const auto& s = spread_[axis];
+    return s[0][c & 0xff] | s[1][c >> 8 & 0xff] | s[2][c >> 16 & 0xff];
+}
+
+template <int D>
+std::uint64_t SortedGrid<D>::morton(const Coord& c) const {
+    std::uint64_t code = 0;
+    for (int a = 0; a < D; ++a)
+        code |= spread(a, c[a]);
+    return code;
+}
+
+template <int D>
+typename SortedGrid<D>::Coord SortedGrid<D>::cell_of(const Vec<D>& x) const {
+    Coord c;
+    for (int a = 0; a < D; ++a) {
+        const Real u = (x[a] - origin_[a]) * inverse_cell_size_[a];
+        const Real top = Real(cell_count_[a] - 1);
+        // A NaN or infinity lands in a border cell; it is nobody's neighbour.
+        c[a] = u > 0 ? static_cast<std::uint32_t>(u < top ? u : top) : 0;
+    }
+    return c;
+}
+
+// Counting sort by Morton code (stable: a cell's particles by index), leaving
+// key_start_[k] = first sorted particle of code k for k in [0, key_count].
+template <int D>
+void SortedGrid<D>::counting_sort(std::size_t key_count) {
+    const std::size_t n = keys_.size();
+    key_start_.assign(key_count + 2, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        ++key_start_[keys_[i] + 2];
+    for (std::size_t k = 2; k < key_start_.size(); ++k)
+        key_start_[k] += key_start_[k - 1];
+    // Scattering through key_start_[k + 1] shifts it to the start of k.
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t to = key_start_[keys_[i] + 1]++;
+        order_[to] = static_cast<std::uint32_t>(i);
+        sorted_keys_[to] = keys_[i];
+    }
+}
+
+// LSD radix sort of the codes, a counting sort per 11-bit digit (stable).
+template <int D>
+void SortedGrid<D>::radix_sort(int key_bits) {
+    const std::size_t n = keys_.size();
+    std::copy(keys_.begin(), keys_.end(), sorted_keys_.begin());
+    std::iota(order_.begin(), order_.end(), 0u);
+    key_buffer_.resize(n);
+    order_buffer_.resize(n);
+    std::array<std::uint32_t, (1u << radix_bits) + 1> start;
+    for (int shift = 0; shift < key_bits; shift += radix_bits) {
+        start.fill(0);
+        for (std::size_t i = 0; i < n; ++i)
+            ++start[(sorted_keys_[i] >> shift & ((1u << radix_bits) - 1)) + 1];
+        std::partial_sum(start.begin(), start.end(), start.begin());
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t to = start[sorted_keys_[i] >> shift & ((1u << radix_bits) - 1)]++;
+            key_buffer_[to] = sorted_keys_[i];
+            order_buffer_[to] = order_[i];
+        }
+        sorted_keys_.swap(key_buffer_);
+        order_.swap(order_buffer_);
+    }
+}
+
+// Open addressing with linear probing, Fibonacci hashing of the code.
+template <int D>
+void SortedGrid<D>::hash_cells() {
+    const std::size_t cells = cell_start_.size() - 1;
+    const std::size_t slots = std::bit_ceil(std::max<std::size_t>(2 * cells, 2));
+    hash_shift_ = 64 - std::countr_zero(slots);
+    hash_keys_.assign(slots, empty_slot);
+    hash_cells_.resize(slots);
+    for (std::size_t c = 0; c < cells; ++c) {
+        const std::uint64_t key = sorted_keys_[cell_start_[c]];
+        std::size_t slot = (key * 0x9e3779b97f4a7c15u) >> hash_shift_;
+        while (hash_keys_[slot] != empty_slot)
+            slot = (slot + 1) & (slots - 1);
+        hash_keys_[slot] = key;
+        hash_cells_[slot] = static_cast<std::uint32_t>(c);
+    }
+}
+
+template <int D>
+typename SortedGrid<D>::Range SortedGrid<D>::cell_range(std::uint64_t key) const {
+    if (!hashed_)
+        return {key_start_[key], key_start_[key + 1]};
+    const std::size_t mask = hash_keys_.size() - 1;
+    for (std::size_t slot = (key * 0x9e3779b97f4a7c15u) >> hash_shift_;; slot = (slot + 1) & mask) {
+        if (hash_keys_[slot] == key) {
+            const std::uint32_t c = hash_cells_[slot];
+            return {cell_start_[c], cell_start_[c + 1]};
+        }
+        if (hash_keys_[slot] == empty_slot)
+            return {0, 0};
+    }
+}
+
+template <int D>
+void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radius) {
+    const std::size_t n = positions.size();
+
+    // Bounding box of the finite positions (a NaN or an infinity is nobody's
+    // neighbour, and must not stretch the grid).
+    Vec<D> lo(std::numeric_limits<Real>::max()), hi(std::numeric_limits<Real>::lowest());
+#pragma omp parallel
+    {
+        Vec<D> thread_lo(std::numeric_limits<Real>::max());
+        Vec<D> thread_hi(std::numeric_limits<Real>::lowest());
+#pragma omp for schedule(static) nowait
+        for (std::size_t i = 0; i < n; ++i)
+            for (int a = 0; a < D; ++a) {
+                const Real v = positions[i][a];
+                if (std::abs(v) <= std::numeric_limits<Real>::max()) {
+                    thread_lo[a] = std::min(thread_lo[a], v);
+                    thread_hi[a] = std::max(thread_hi[a], v);
+                }
+            }
+#pragma omp critical
+        {
+            lo = glm::min(lo, thread_lo);
+            hi = glm::max(hi, thread_hi);
+        }
+    }
+
+    std::array<std::uint32_t, D> bits;
+    int key_bits = 0;
+    for (int a = 0; a < D; ++a) {
+        if (lo[a] > hi[a])
+            lo[a] = hi[a] = 0; // no finite position
+        const Real extent = hi[a] - lo[a];
+        Real size = radius * cell_widening;
+        // Coarser cells along an axis wider than max_axis_cells: still exact
+        // (a pair is at most one cell apart), only more candidates.
+        if (!(extent / size < Real(max_axis_cells - 1)))
+            size = extent / Real(max_axis_cells - 1);
+        inverse_cell_size_[a] =
+            size > 0 && size < std::numeric_limits<Real>::infinity() ? 1 / size : 0;
+        const Real last = std::floor(extent * inverse_cell_size_[a]);
+        cell_count_[a] =
+            last < Real(max_axis_cells - 1) ? static_cast<std::uint32_t>(last) + 1 : max_axis_cells;
+        bits[a] = static_cast<std::uint32_t>(std::bit_width(cell_count_[a] - 1));
+        key_bits += static_cast<int>(bits[a]);
+    }
+    origin_ = lo;
+    set_up_morton(bits);
+
+    keys_.resize(n);
+    sorted_keys_.resize(n);
+    order_.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+        keys_[i] = morton(cell_of(positions[i]));
+
+    const std::size_t table_keys = std::max(table_keys_per_particle * n, min_table_keys);
+    hashed_ = key_bits > 40 || (std::size_t(1) << key_bits) > table_keys;
+    if (hashed_)
+        radix_sort(key_bits);
+    else
+        counting_sort(std::size_t(1) << key_bits);
+
+    // The occupied cells, in Morton order.
+    cell_start_.clear();
+    for (std::size_t k = 0; k < n; ++k)
+        if (k == 0 || sorted_keys_[k] != sorted_keys_[k - 1])
+            cell_start_.push_back(static_cast<std::uint32_t>(k));
+    cell_start_.push_back(static_cast<std::uint32_t>(n));
+    if (hashed_)
+        hash_cells();
+
+    // Positions in cell order, an array per axis: neighbouring cells are then
+    // contiguous runs that the distance loop streams through.
+    for (int a = 0; a < D; ++a)
+        sorted_x_[a].resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < n; ++k)
+        for (int a = 0; a < D; ++a)
+            sorted_x_[a][k] = positions[order_[k]][a];
+}
+
+template <int D>
+std::size_t SortedGrid<D>::gather_candidates(std::uint32_t first, std::uint32_t last, Real r2,
+                                             Scratch& s) const {
+    constexpr int neighbour_cells = D == 2 ? 9 : 27;
+    Vec<D> x, lo(std::numeric_limits<Real>::max()), hi(std::numeric_limits<Real>::lowest());
+    for (int a = 0; a < D; ++a)
+        x[a] = sorted_x_[a][first];
+    const Coord centre = cell_of(x);
+    // The box around the cell's particles; a NaN or infinity has no neighbour
+    // to look for.
+    for (std::uint32_t k = first; k < last; ++k)
+        for (int a = 0; a < D; ++a) {
+            const Real v = sorted_x_[a][k];
+            if (std::abs(v) <= std::numeric_limits<Real>::max()) {
+                lo[a] = std::min(lo[a], v);
+                hi[a] = std::max(hi[a], v);
+            }
+        }
+
+    // The 3^D surrounding cells' runs, by position in the sorted arrays.
+    std::array<std::array<std::uint64_t, 3>, D> part{};
+    std::array<int, D> low, high;
+    for (int a = 0; a < D; ++a) {
+        low[a] = centre[a] > 0 ? 0 : 1;
+        high[a] = centre[a] + 1 < cell_count_[a] ? 2 : 1;
+        for (int o = low[a]; o <= high[a]; ++o)
+            part[a][o] = spread(a, centre[a] + o - 1);
+    }
+    std::array<Range, neighbour_cells> ranges;
+    int range_count = 0;
+    std::size_t total = 0;
+    for (int k = 0; k < neighbour_cells; ++k) {
+        std::uint64_t key = 0;
+        bool inside = true;
+        int rest = k;
+        for (int a = 0; a < D; ++a) {
+            const int o = rest % 3;
+            rest /= 3;
+            inside = inside && o >= low[a] && o <= high[a];
+            key |= inside ? part[a][o] : 0;
+        }
+        if (!inside)
+            continue;
+        const Range r = cell_range(key);
+        if (r.end > r.begin) {
+            int at = range_count++;
+            for (; at > 0 && ranges[at - 1].begin > r.begin; --at)
+                ranges[at] = ranges[at - 1];
+            ranges[at] = r;
+            total += r.end - r.begin;
+        }
+    }
+    if (s.keyed.size() < total) {
+        s.keyed.resize(total);
+        s.merged.resize(total);
+        for (int a = 0; a < D; ++a)
+            s.x[a].resize(total);
+        s.index.resize(total);
+        s.distance2.resize(total);
+    }
+
+    // Only candidates closer than the radius to the box around the cell's
+    // particles can be anyone's neighbour (a quarter of a lattice's are not).
+    // Rounding is monotonic, so this distance, summed like glm::dot, is never
+    // above a computed particle distance: the test drops no pair.
+    // Each cell's particles are sorted by index: a run of sorted keys.
+    std::array<std::uint32_t, neighbour_cells + 1> bounds;
+    int runs = 0;
+    std::uint32_t count = 0;
+    Real* gap2 = s.distance2.data();
+    for (int k = 0; k < range_count; ++k) {
+        const std::uint32_t begin = ranges[k].begin, length = ranges[k].end - begin;
+        if constexpr (D == 2)
+            squared_gaps(length, sorted_x_[0].data() + begin, sorted_x_[1].data() + begin, lo[0],
+                         hi[0], lo[1], hi[1], gap2);
+        else
+            squared_gaps(length, sorted_x_[0].data() + begin, sorted_x_[1].data() + begin,
+                         sorted_x_[2].data() + begin, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2],
+                         gap2);
+        bounds[runs] = count;
+        for (std::uint32_t m = 0; m < length; ++m) {
+            s.keyed[count] = std::uint64_t(order_[begin + m]) << 32 | (begin + m);
+            count += gap2[m] < r2;
+        }
+        runs += count > bounds[runs];
+    }
+    bounds[runs] = count;
+    // By index, so that every row comes out sorted; already so when the
+    // particle arrays are stored in cell order.
+    const std::uint64_t* keyed = s.keyed.data();
+    if (!std::is_sorted(s.keyed.begin(), s.keyed.begin() + count))
+        keyed = merge_runs(s.keyed.data(), s.merged.data(), bounds.data(), runs);
+    for (std::size_t m = 0; m < count; ++m) {
+        const auto j = static_cast<std::uint32_t>(keyed[m]);
+        s.index[m] = static_cast<std::uint32_t>(keyed[m] >> 32);
+        for (int a = 0; a < D; ++a)
+            s.x[a][m] = sorted_x_[a][j];
+    }
+    return count;
+}
+
+template <int D>
+void SortedGrid<D>::list_neighbours(Real radius, NeighbourList& out) {
+    const std::size_t n = order_.size();
+    const std::size_t cells = cell_start_.size() - 1;
+    const Real r2 = radius * radius;
+    scratch_.resize(std::max<std::size_t>(scratch_.size(), omp_get_max_threads()));
+    row_offset_.resize(n);
+    row_thread_.resize(n);
+    out.start.resize(n + 1);
+
+    // Rows go to per-thread buffers, in whatever order the cells are handed
+    // out; each particle's row is then copied to its place. One distance pass,
+    // and the result does not depend on the thread count.
+#pragma omp parallel
+    {
+        const int thread = omp_get_thread_num();
+        Scratch& s = scratch_[thread];
+        std::size_t used = 0;
+#pragma omp for schedule(dynamic, 16)
+        for (std::size_t c = 0; c < cells; ++c) {
+            const std::uint32_t first = cell_start_[c], last = cell_start_[c + 1];
+            // Gathered once per cell, so each particle runs one long loop.
+            const std::size_t candidates = gather_candidates(first, last, r2, s);
+            for (std::uint32_t k = first; k < last; ++k) {
+                if constexpr (D == 2)
+                    squared_distances(candidates, s.x[0].data(), s.x[1].data(), sorted_x_[0][k],
+                                      sorted_x_[1][k], s.distance2.data());
+                else
+                    squared_distances(candidates, s.x[0].data(), s.x[1].data(), s.x[2].data(),
+                                      sorted_x_[0][k], sorted_x_[1][k], sorted_x_[2][k],
+                                      s.distance2.data());
+                if (s.rows.size() < used + candidates)
+                    s.rows.resize(std::max(2 * s.rows.size(), used + candidates));
+                const std::uint32_t self = order_[k];
+                const std::uint32_t found = select_neighbours(
+                    candidates, s.distance2.data(), s.index.data(), r2, self, s.rows.data() + used);
+                row_offset_[self] = static_cast<std::uint32_t>(used);
+                row_thread_[self] = static_cast<std::uint16_t>(thread);
+                out.start[self + 1] = found;
+                used += found;
+            }
+        }
+    }
+
+    out.start[0] = 0;
+    std::uint64_t total = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        total += out.start[i + 1];
+        out.start[i + 1] = static_cast<std::uint32_t>(total);
+    }
+    if (total > std::numeric_limits<std::uint32_t>::max())
+        throw std::overflow_error("sorted_grid: more than 2^32 neighbour pairs");
+    // Headroom so that the pair count growing a little does not reallocate.
+    if (out.index.capacity() < total)
+        out.index.reserve(total + total / 4);
+    out.index.resize(total);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+        std::copy_n(scratch_[row_thread_[i]].rows.data() + row_offset_[i],
+                    out.start[i + 1] - out.start[i], out.index.data() + out.start[i]);
+}
+
+template <int D>
+void SortedGrid<D>::find(std::span<const Vec<D>> positions, Real radius, NeighbourList& out) {
+    const std::size_t n = positions.size();
+    if (n >= std::numeric_limits<std::uint32_t>::max())
+        throw std::length_error("sorted_grid: more than 2^32 particles");
+    timings_ = {};
+    if (n == 0 || !(radius > 0)) {
+        // Nobody is strictly closer than a radius of zero.
+        out.start.assign(n + 1, 0);
+        out.index.clear();
+        order_.resize(n);
+        std::iota(order_.begin(), order_.end(), 0u);
+        cell_start_.assign(1, 0);
+        hashed_ = false;
+        return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    sort_into_cells(positions, radius);
+    timings_.build_seconds = seconds_since(start);
+    const auto query = std::chrono::steady_clock::now();
+    list_neighbours(radius, out);
+    timings_.query_seconds = seconds_since(query);
+}
+
+template class SortedGrid<2>;
+template class SortedGrid<3>;
+
+} // namespace sph

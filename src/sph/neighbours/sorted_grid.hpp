@@ -1,0 +1,106 @@
+#pragma once
+// Neighbour search on a uniform grid whose cells are ordered along a Morton
+// (z-order) curve: the "z-index sort" of Ihmsen et al. 2011, "A parallel SPH
+// implementation on multi-core CPUs". Cells of size h cover the particles'
+// bounding box; a counting sort buckets the particles by cell (O(N), stable,
+// so deterministic), and their positions are copied into that order, so a
+// cell and its neighbours are contiguous runs of memory that the distance
+// loop streams through. Every row lists its neighbours by ascending index, and
+// the lists do not depend on the thread count.
+//
+// A box too large for a table indexed by Morton code (more than ~4 keys per
+// particle: a splash, a stray particle) falls back to a radix sort of the
+// codes and a hash table of the occupied cells; one wider than 2^21 cells
+// gets coarser cells along that axis. Both stay exact, only slower.
+
+#include "sph/neighbours/neighbour_search.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace sph {
+
+template <int D>
+class SortedGrid final : public NeighbourSearch<D> {
+  public:
+    std::string_view name() const override { return "sorted_grid"; }
+    void find(std::span<const Vec<D>> positions, Real radius, NeighbourList& out) override;
+
+    // Particle indices in cell order (cells along the Morton curve, a cell's
+    // particles by ascending index), as of the last find: the permutation a
+    // spatial sort of the particle arrays applies. The identity after a find
+    // with a radius of zero.
+    const std::vector<std::uint32_t>& order() const { return order_; }
+
+    // Whether the last find hashed the occupied cells (a sparse or huge box)
+    // instead of indexing a table by Morton code.
+    bool hashed_cells() const { return hashed_; }
+
+    // Wall-clock seconds of the last find: sorting into cells, then listing.
+    struct Timings {
+        double build_seconds = 0;
+        double query_seconds = 0;
+    };
+    const Timings& last_timings() const { return timings_; }
+
+  private:
+    using Coord = std::array<std::uint32_t, D>;
+    // A run of sorted particles: [begin, end).
+    struct Range {
+        std::uint32_t begin, end;
+    };
+    // Per-thread buffers, kept between calls.
+    struct Scratch {
+        std::vector<std::uint64_t> keyed;   // (index << 32 | sorted position) per candidate
+        std::vector<std::uint64_t> merged;  // keyed, being merged
+        std::array<std::vector<Real>, D> x; // the candidates of one cell, gathered
+        std::vector<std::uint32_t> index;   // their indices in the caller's order
+        std::vector<Real> distance2;
+        std::vector<std::uint32_t> rows; // this thread's neighbour rows, any order
+    };
+
+    void sort_into_cells(std::span<const Vec<D>> positions, Real radius);
+    void set_up_morton(const std::array<std::uint32_t, D>& bits);
+    Coord cell_of(const Vec<D>& x) const;
+    std::uint64_t morton(const Coord& c) const;
+    std::uint64_t spread(int axis, std::uint32_t c) const;
+    void counting_sort(std::size_t key_count);
+    void radix_sort(int key_bits);
+    void hash_cells();
+    Range cell_range(std::uint64_t key) const;
+    // Gathers into s the candidates of the particles sorted into [first, last),
+    // ordered by index; returns how many.
+    std::size_t gather_candidates(std::uint32_t first, std::uint32_t last, Real r2,
+                                  Scratch& s) const;
+    void list_neighbours(Real radius, NeighbourList& out);
+
+    // The grid of the last call.
+    Vec<D> origin_{0};
+    Vec<D> inverse_cell_size_{1};
+    Coord cell_count_{};
+    std::array<std::uint32_t, D> bits_{};
+    // Morton code of a coordinate, one byte at a time: spread_[axis][byte][value].
+    std::array<std::array<std::array<std::uint64_t, 256>, 3>, D> spread_{};
+    bool morton_ready_ = false;
+    bool hashed_ = false;
+
+    std::vector<std::uint64_t> keys_;        // Morton code per particle, caller's order
+    std::vector<std::uint64_t> sorted_keys_; // in cell order
+    std::vector<std::uint64_t> key_buffer_;  // radix sort
+    std::vector<std::uint32_t> order_;
+    std::vector<std::uint32_t> order_buffer_;   // radix sort
+    std::array<std::vector<Real>, D> sorted_x_; // positions in cell order, one array per axis
+    std::vector<std::uint32_t> key_start_;      // table: first sorted particle per key, + end
+    std::vector<std::uint32_t> cell_start_;     // occupied cells: first sorted particle, + end
+    std::vector<std::uint64_t> hash_keys_;      // open addressing, empty = ~0
+    std::vector<std::uint32_t> hash_cells_;     // cell number per slot
+    int hash_shift_ = 64;
+
+    std::vector<Scratch> scratch_;
+    std::vector<std::uint32_t> row_offset_; // per particle, into its thread's rows
+    std::vector<std::uint16_t> row_thread_;
+    Timings timings_;
+};
+
+} // namespace sph

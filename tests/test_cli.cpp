@@ -220,6 +220,21 @@ void check_run_outputs(const fs::path& out, int dimension, std::size_t particles
         CHECK(stats.number(k, "dt_max") <= scene.at("solver").at("dt_max").get<double>());
     // The resolved scene reads back as the same scene.
     CHECK(sph::to_json(sph::parse_scene(scene.dump(), "run.json", {})) == scene);
+    // Where the time went: the step's stages, no render or encode (these
+    // runs draw nothing), shares of the wall time.
+    std::set<std::string> stages;
+    double share = 0;
+    for (const json& stage : run.at("stages")) {
+        stages.insert(stage.at("name").get<std::string>());
+        CHECK(stage.at("seconds").get<double>() > 0);
+        CHECK(stage.at("ns_per_particle_step").get<double>() > 0);
+        share += stage.at("share").get<double>();
+    }
+    CHECK(share <= 1.0 + 1e-9);
+    for (const char* name : {"neighbour search", "density", "gravity", "integration"})
+        CHECK(stages.count(name) == 1);
+    for (const char* name : {"render", "readback", "encode"})
+        CHECK(stages.count(name) == 0);
 }
 
 } // namespace

@@ -228,6 +228,9 @@ TEST_CASE("run writes a PNG per frame and an MP4, and records the GL context", "
     CHECK(json.find("\"readback_s\"") != std::string::npos);
     CHECK(json.find("\"encode_s\"") != std::string::npos);
     CHECK(json.find("\"simulate_s\"") != std::string::npos);
+    // The stage table counts drawing and encoding too.
+    for (const char* stage : {"render", "readback", "encode", "neighbour search"})
+        CHECK(json.find(std::string("\"name\": \"") + stage + "\"") != std::string::npos);
 }
 
 TEST_CASE("no GL context: exit 4, nothing written; data-only runs need no GL", "[render][cli]") {

@@ -277,3 +277,42 @@ TEST_CASE("the state hash sees every bit and not the memory order", "[simulation
     b.velocity[7] = std::nextafter(b.velocity[7], 1e9);
     CHECK(state_hash(b) != reference);
 }
+
+namespace {
+
+std::vector<std::string> stage_names(const StageTimes& times) {
+    std::vector<std::string> names;
+    for (const auto& e : times.entries())
+        names.emplace_back(e.name);
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+} // namespace
+
+TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][stages]") {
+    using Names = std::vector<std::string>;
+    auto stages_of = [](const std::vector<Override>& o) {
+        auto sim = make_simulation<2>(small_dam_break(o));
+        for (int k = 0; k < 3; ++k)
+            sim.step();
+        CHECK(sim.particle_steps() == 3 * sim.state().size());
+        return stage_names(sim.stage_times());
+    };
+    // The seed: reflecting walls, its pair force, gravity.
+    CHECK(stages_of({}) == Names{"boundary", "density", "gravity", "integration",
+                                 "neighbour search", "pressure and viscosity", "time step",
+                                 "watchdog"});
+    // No effects: no gravity stage. A fixed step: no time-step rule.
+    CHECK(stages_of({{"effects", "{}"}, {"solver.dt", "1e-4"}}) ==
+          Names{"boundary", "density", "integration", "neighbour search", "pressure and viscosity",
+                "watchdog"});
+    // wcsph: wall particles, Tait pressure, viscosity.
+    CHECK(stages_of({{"solver.name", "wcsph"}}) ==
+          Names{"boundary", "density", "gravity", "integration", "neighbour search", "pressure",
+                "time step", "viscosity", "watchdog"});
+    // dfsph without viscosity: its two solves, no viscosity stage.
+    CHECK(stages_of({{"solver.name", "dfsph"}, {"material.viscosity", "0"}}) ==
+          Names{"boundary", "density", "divergence solve", "gravity", "integration",
+                "neighbour search", "pressure solve", "time step", "watchdog"});
+}

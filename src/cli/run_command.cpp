@@ -2,6 +2,7 @@
 
 #include "cli/exit_codes.hpp"
 #include "cli/progress.hpp"
+#include "cli/stage_report.hpp"
 #include "io/files.hpp"
 #include "io/input_error.hpp"
 #include "io/particle_export.hpp"
@@ -176,7 +177,10 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
 
     Snapshot snapshot;
     std::uint64_t written = 0;
+    // Stages outside the simulation step, for run.json "stages".
+    double frame_fields_s = 0, sinks_s = 0;
     std::vector<double> simulate_seconds;
+    std::vector<StageRow> stage_report;
     // Per frame: where the time went (run.json "timings").
     auto record_timings = [&] {
         json frames = json::array();
@@ -194,6 +198,16 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
                               {"readback_s", row[2]},
                               {"encode_s", row[3]}});
         }
+        StageTimes after;
+        after.add("frame statistics", frame_fields_s);
+        after.add("render", total[1]);
+        after.add("readback", total[2]);
+        after.add("encode", total[3]);
+        // Stats, exports, handing PNGs to their writer: what the sinks took
+        // beyond drawing and encoding.
+        after.add("output", std::max(0.0, sinks_s - total[1] - total[2] - total[3]));
+        stage_report = stage_rows(sim.stage_times(), after, wall(), sim.particle_steps());
+        record.document["stages"] = stages_json(stage_report);
         record.document["timings"] = {{"total",
                                        {{"simulate_s", total[0]},
                                         {"render_s", total[1]},
@@ -229,13 +243,18 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             snapshot.steps = sim.steps();
             snapshot.time = sim.time();
             snapshot.steps_taken = sim.take_counters();
+            const auto fields_start = std::chrono::steady_clock::now();
             snapshot.stats = measure_frame(sim.params(), sim.state());
             snapshot.wall_seconds = wall();
             copy_fields(sim.state(), snapshot);
             if (render && D == 3 && scene.render.cull_buried)
                 mark_buried(sim.state(), sim.neighbours(), scene.fluid.spacing, snapshot.buried);
+            const auto sinks_start = std::chrono::steady_clock::now();
+            frame_fields_s += std::chrono::duration<double>(sinks_start - fields_start).count();
             for (auto& sink : sinks)
                 sink->write(snapshot);
+            sinks_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - sinks_start)
+                           .count();
             ++written;
             progress.update(k, frames, sim.time(), sim.steps(), wall());
         }
@@ -265,9 +284,10 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
     record_timings();
     record.save("completed", written, sim.steps(), sim.time(), seconds);
     if (!options.quiet)
-        fmt::print("sphclip: done: {} steps, {} frames in {:.2f} s ({:.3g} particle-steps/s)\n",
+        fmt::print("sphclip: done: {} steps, {} frames in {:.2f} s ({:.3g} particle-steps/s)\n{}",
                    sim.steps(), written, seconds,
-                   seconds > 0 ? double(sim.steps()) * double(sim.state().size()) / seconds : 0.0);
+                   seconds > 0 ? double(sim.particle_steps()) / seconds : 0.0,
+                   stages_table(stage_report));
     return exit_success;
 }
 

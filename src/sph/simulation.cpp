@@ -20,6 +20,7 @@ template <int D>
 Real Simulation<D>::next_dt() const {
     if (params_.time_step.fixed)
         return params_.time_step.dt;
+    StageTimes::Scope timed(&stages_, "time step");
     ExtremeRates rates = measure_rates(state_);
     for (const auto& effect : effects_)
         rates.max_acceleration = std::max(rates.max_acceleration, effect->body_acceleration());
@@ -38,6 +39,7 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
         counters_.dt_sum += dt;
         counters_.pressure_iterations += report.pressure_iterations;
         counters_.divergence_iterations += report.divergence_iterations;
+        StageTimes::Scope timed(&stages_, "watchdog");
         if (auto problem = inspect_step(params_, state_, dt))
             return problem;
     }
@@ -47,7 +49,10 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
 template <int D>
 void Simulation<D>::step_by(Real dt) {
     // Copy assignment reuses saved_'s memory: no allocation once sizes settle.
-    saved_ = state_;
+    {
+        StageTimes::Scope timed(&stages_, "watchdog");
+        saved_ = state_;
+    }
     const std::uint64_t steps_before = steps_;
     const StepCounters counters_before = counters_;
     for (int retry = 0;; ++retry) {
@@ -63,6 +68,7 @@ void Simulation<D>::step_by(Real dt) {
         counters_ = counters_before;
         counters_.retries += std::uint64_t(retry) + 1;
     }
+    particle_steps_ += (steps_ - steps_before) * state_.size();
     time_ += dt;
 }
 

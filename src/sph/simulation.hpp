@@ -51,11 +51,15 @@ class Simulation {
     // Null when the walls reflect.
     const BoundaryParticles<D>* boundary() const { return boundary_ ? &*boundary_ : nullptr; }
     Real time() const { return time_; }
+    // Time per stage since the start, and the particle-steps it was spent on
+    // (accepted steps times the particles they moved).
+    const StageTimes& stage_times() const { return stages_; }
+    std::uint64_t particle_steps() const { return particle_steps_; }
     std::uint64_t steps() const { return steps_; }
 
   private:
     StepContext<D> context() {
-        return {*search_, neighbours_, boundary(), boundary_neighbours_, effects_};
+        return {*search_, neighbours_, boundary(), boundary_neighbours_, effects_, &stages_};
     }
     // Advances by dt under the watchdog (see step()).
     void step_by(Real dt);
@@ -74,7 +78,10 @@ class Simulation {
     State<D> saved_; // the state before the step, for the watchdog's retries
     Real time_ = 0;
     std::uint64_t steps_ = 0;
-    std::uint64_t fixed_steps_ = 0; // fixed dt: time is this count times dt, free of rounding
+    std::uint64_t fixed_steps_ = 0;
+    std::uint64_t particle_steps_ = 0;
+    mutable StageTimes stages_; // next_dt() const is timed too // fixed dt: time is this count
+                                // times dt, free of rounding
 };
 
 } // namespace sph

@@ -67,8 +67,9 @@ std::string csv(const Row& r) {
 }
 
 // Median over repetitions after one warm-up call (allocations, page faults):
-// at least 3 and about a second's worth, or just one when a call takes
-// seconds (the hash on a large shuffled lattice).
+// at least 3 and about a second's worth, fewer when calls take seconds, and
+// only the warm-up itself when it took over 10 s (the hash on a large
+// shuffled lattice).
 template <int D>
 Row measure(NeighbourSearch<D>& search, const std::vector<Vec<D>>& x, Real radius, bool quick) {
     NeighbourList list;
@@ -90,13 +91,13 @@ Row measure(NeighbourSearch<D>& search, const std::vector<Vec<D>>& x, Real radiu
             samples.push_back({ms, -1, -1});
     };
     once();
-    if (!quick && samples[0].ms < 3000) {
+    if (!quick && samples[0].ms < 10000) {
         samples.clear();
         double total = 0;
-        while (samples.size() < 3 || (total < 1000 && samples.size() < 21)) {
+        do {
             once();
             total += samples.back().ms;
-        }
+        } while (total < 10000 && (samples.size() < 3 || (total < 1000 && samples.size() < 21)));
     }
     std::sort(samples.begin(), samples.end(),
               [](const Sample& a, const Sample& b) { return a.ms < b.ms; });

@@ -15,7 +15,7 @@ cd "$(dirname "$0")/../.."
 
 seconds="${1:-60}"
 jobs="${JOBS:-1}"
-build=build-fuzz
+build="build-fuzz"
 fuzz=tests/fuzz
 
 for tool in clang clang++; do

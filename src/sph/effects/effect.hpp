@@ -31,11 +31,4 @@ class Effect {
 template <int D>
 using EffectList = std::vector<std::unique_ptr<Effect<D>>>;
 
-template <int D>
-void apply_effects(const EffectList<D>& effects, const Params<D>& params,
-                   const NeighbourList& neighbours, State<D>& state) {
-    for (const auto& effect : effects)
-        effect->apply(params, neighbours, state);
-}
-
 } // namespace sph

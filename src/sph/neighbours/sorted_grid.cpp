@@ -87,35 +87,6 @@ std::uint32_t select_neighbours(std::size_t count, const Real* __restrict distan
     return found;
 }
 
-// Sorts keys[0, bounds[runs]) made of `runs` sorted runs [bounds[r],
-// bounds[r + 1]) by merging them pairwise, branch-free (a merge of ~27 short
-// runs is several times cheaper than std::sort). Returns where the result
-// is: keys or buffer.
-std::uint64_t* merge_runs(std::uint64_t* keys, std::uint64_t* buffer, std::uint32_t* bounds,
-                          int runs) {
-    while (runs > 1) {
-        int merged = 0;
-        for (int r = 0; r < runs; r += 2, ++merged) {
-            const std::uint64_t *a = keys + bounds[r], *a_end = keys + bounds[r + 1];
-            const std::uint64_t *b = a_end, *b_end = r + 1 < runs ? keys + bounds[r + 2] : a_end;
-            std::uint64_t* to = buffer + bounds[r];
-            while (a < a_end && b < b_end) {
-                const bool take_b = *b < *a;
-                *to++ = take_b ? *b : *a;
-                a += !take_b;
-                b += take_b;
-            }
-            to = std::copy(a, a_end, to);
-            std::copy(b, b_end, to);
-            bounds[merged] = bounds[r];
-        }
-        bounds[merged] = bounds[runs];
-        runs = merged;
-        std::swap(keys, buffer);
-    }
-    return keys;
-}
-
 } // namespace
 
 template <int D>
@@ -388,7 +359,6 @@ std::size_t SortedGrid<D>::gather_candidates(std::uint32_t first, std::uint32_t 
     }
     if (s.keyed.size() < total) {
         s.keyed.resize(total);
-        s.merged.resize(total);
         for (int a = 0; a < D; ++a)
             s.x[a].resize(total);
         s.index.resize(total);
@@ -399,10 +369,7 @@ std::size_t SortedGrid<D>::gather_candidates(std::uint32_t first, std::uint32_t 
     // particles can be anyone's neighbour (a quarter of a lattice's are not).
     // Rounding is monotonic, so this distance, summed like glm::dot, is never
     // above a computed particle distance: the test drops no pair.
-    // Each cell's particles are sorted by index: a run of sorted keys.
-    std::array<std::uint32_t, neighbour_cells + 1> bounds;
-    int runs = 0;
-    std::uint32_t count = 0;
+    std::size_t count = 0;
     Real* gap2 = s.distance2.data();
     for (int k = 0; k < range_count; ++k) {
         const std::uint32_t begin = ranges[k].begin, length = ranges[k].end - begin;
@@ -413,22 +380,18 @@ std::size_t SortedGrid<D>::gather_candidates(std::uint32_t first, std::uint32_t 
             squared_gaps(length, sorted_x_[0].data() + begin, sorted_x_[1].data() + begin,
                          sorted_x_[2].data() + begin, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2],
                          gap2);
-        bounds[runs] = count;
         for (std::uint32_t m = 0; m < length; ++m) {
             s.keyed[count] = std::uint64_t(order_[begin + m]) << 32 | (begin + m);
             count += gap2[m] < r2;
         }
-        runs += count > bounds[runs];
     }
-    bounds[runs] = count;
     // By index, so that every row comes out sorted; already so when the
     // particle arrays are stored in cell order.
-    const std::uint64_t* keyed = s.keyed.data();
     if (!std::is_sorted(s.keyed.begin(), s.keyed.begin() + count))
-        keyed = merge_runs(s.keyed.data(), s.merged.data(), bounds.data(), runs);
+        std::sort(s.keyed.begin(), s.keyed.begin() + count);
     for (std::size_t m = 0; m < count; ++m) {
-        const auto j = static_cast<std::uint32_t>(keyed[m]);
-        s.index[m] = static_cast<std::uint32_t>(keyed[m] >> 32);
+        const auto j = static_cast<std::uint32_t>(s.keyed[m]);
+        s.index[m] = static_cast<std::uint32_t>(s.keyed[m] >> 32);
         for (int a = 0; a < D; ++a)
             s.x[a][m] = sorted_x_[a][j];
     }

@@ -53,7 +53,6 @@ class SortedGrid final : public NeighbourSearch<D> {
     // Per-thread buffers, kept between calls.
     struct Scratch {
         std::vector<std::uint64_t> keyed;   // (index << 32 | sorted position) per candidate
-        std::vector<std::uint64_t> merged;  // keyed, being merged
         std::array<std::vector<Real>, D> x; // the candidates of one cell, gathered
         std::vector<std::uint32_t> index;   // their indices in the caller's order
         std::vector<Real> distance2;

@@ -7,6 +7,7 @@
 #include "sph/viscosity.hpp"
 
 #include <algorithm>
+#include <optional>
 
 // Notation. With g_ij = m grad W_ij (fluid pairs) and w_ib = rho0 V_b grad W_ib
 // (wall pairs), the rate of compression is
@@ -25,12 +26,6 @@ namespace sph {
 
 namespace {
 constexpr Real jacobi_relaxation = 0.5;
-// The largest compression (a fraction of rho0) one density solve removes. A
-// start far from rest (a block placed on itself, particles at half their
-// spacing) would otherwise be undone in a single step by velocities that
-// carry particles past their neighbours; it expands over a few steps
-// instead. Never reached in a flowing fluid, whose error is below 1%.
-constexpr Real max_correction = 0.1;
 } // namespace
 
 template <int D>
@@ -40,6 +35,7 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
     const std::size_t n = state.size();
     find_neighbours_and_density(params, kernel, context, state);
 
+    auto timed = context.time("pressure solve");
     factor_.resize(n);
     stiffness_.resize(n);
     stiffness_sum_.resize(n);
@@ -138,9 +134,7 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
             if (walls)
                 for (std::uint32_t e = walls->start[i]; e < walls->start[i + 1]; ++e)
                     rate += glm::dot(wall_gradient_[e], state.velocity[i]);
-            source_[i] = target == Target::density
-                             ? std::min(state.density[i] - rho0, max_correction * rho0) / dt + rate
-                             : rate;
+            source_[i] = target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
         }
         // The residual of a pressure that must stay >= 0: compression
         // anywhere, and expansion where there is pressure to give back.
@@ -221,16 +215,25 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
         // 1. Neighbours, density (fluid + walls), the factors alpha_i.
         prepare(params, kernel, context, state);
         // 2. Divergence-free velocities (the previous step's end, Algorithm 1 line 12).
-        report.divergence_iterations = solve(params, dt, Target::divergence, context, state);
+        {
+            auto timed = context.time("divergence solve");
+            report.divergence_iterations = solve(params, dt, Target::divergence, context, state);
+        }
         // 3. Non-pressure forces: viscosity and the scene's effects; v* = v + dt a.
         std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
-        if (params.viscosity > 0)
+        if (params.viscosity > 0) {
+            auto timed = context.time("viscosity");
             add_laminar_viscosity(params, kernel, context.neighbours, context.boundary,
                                   context.boundary_neighbours, state);
+        }
     });
-    apply_effects(context.effects, params, context.neighbours, state);
-    kick(dt, state);
+    context.apply_effects(params, state);
+    {
+        auto timed = context.time("integration");
+        kick(dt, state);
+    }
     // 4. Constant density: v so that rho* = rho0; p_i = rho_i^2 s_i / dt.
+    auto solve_timed = std::make_optional<StageTimes::Scope>(context.stages, "pressure solve");
     report.pressure_iterations = solve(params, dt, Target::density, context, state);
     const std::size_t n = state.size();
 #pragma omp parallel for schedule(static)
@@ -238,8 +241,13 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
         state.pressure[i] =
             state.density[i] * state.density[i] * (stiffness_sum_[i] + divergence_sum_[i]) / dt;
     previous_dt_ = dt;
+    solve_timed.reset();
     // 5. Move; the reflecting box stays behind the wall particles as a last guard.
-    drift(dt, state);
+    {
+        auto timed = context.time("integration");
+        drift(dt, state);
+    }
+    auto timed = context.time("boundary");
     reflect_at_box(params, state);
     return report;
 }

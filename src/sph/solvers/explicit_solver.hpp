@@ -23,17 +23,24 @@ class ExplicitSolver : public Solver<D> {
         if (params.integrator == Integrator::verlet) {
             if (!accelerations_current_ || state.size() != accelerations_for_)
                 compute_accelerations(params, state, context);
-            kick(dt / 2, state);
-            drift(dt, state);
-            reflect_at_box(params, state);
+            {
+                auto timed = context.time("integration");
+                kick(dt / 2, state);
+                drift(dt, state);
+            }
+            reflect(params, state, context);
             compute_accelerations(params, state, context);
+            auto timed = context.time("integration");
             kick(dt / 2, state);
             accelerations_current_ = true;
             accelerations_for_ = state.size();
         } else {
             compute_accelerations(params, state, context);
-            integrate_symplectic_euler(dt, state);
-            reflect_at_box(params, state);
+            {
+                auto timed = context.time("integration");
+                integrate_symplectic_euler(dt, state);
+            }
+            reflect(params, state, context);
         }
         return {};
     }
@@ -44,6 +51,11 @@ class ExplicitSolver : public Solver<D> {
                                        StepContext<D>& context) = 0;
 
   private:
+    static void reflect(const Params<D>& params, State<D>& state, StepContext<D>& context) {
+        auto timed = context.time("boundary");
+        reflect_at_box(params, state);
+    }
+
     bool accelerations_current_ = false;
     std::size_t accelerations_for_ = 0;
 };

@@ -20,13 +20,17 @@ void SeedSolver<D>::compute_accelerations(const Params<D>& params, State<D>& sta
         // 1. Neighbours closer than h (the seed's spatial hash by default).
         context.find_neighbours(state.position, params.h);
         // 2. Density by summation (the seed's poly6); p = K (rho - rho0) / rho0.
-        compute_density(params, kernel, context.neighbours, state);
-        compute_pressure_linear(params, state);
+        {
+            auto timed = context.time("density");
+            compute_density(params, kernel, context.neighbours, state);
+            compute_pressure_linear(params, state);
+        }
         // 3. Pressure and viscosity together, the seed's pair force f_ij, a = f / rho.
+        auto timed = context.time("pressure and viscosity");
         compute_seed_interaction(params, kernel, context.neighbours, state);
     });
     // 4. Body forces and other effects the scene names (gravity, ...).
-    apply_effects(context.effects, params, context.neighbours, state);
+    context.apply_effects(params, state);
 }
 
 template <int D>

@@ -5,6 +5,7 @@
 #include "sph/boundary_particles.hpp"
 #include "sph/effects/effect.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
+#include "sph/stage_times.hpp"
 #include "sph/time_step.hpp"
 
 #include <memory>
@@ -24,12 +25,29 @@ struct StepContext {
     const BoundaryParticles<D>* boundary; // null: walls reflect (the seed's)
     NeighbourList& boundary_neighbours;   // fluid -> boundary particles
     const EffectList<D>& effects;
+    StageTimes* stages = nullptr; // where stage times go; null: not timed
+
+    // Times the stage that lives as long as the returned scope.
+    StageTimes::Scope time(std::string_view stage) { return {stages, stage}; }
 
     // Fills both lists for the current positions.
     void find_neighbours(std::span<const Vec<D>> positions, Real h) {
-        search.find(positions, h, neighbours);
-        if (boundary)
+        {
+            auto timed = time("neighbour search");
+            search.find(positions, h, neighbours);
+        }
+        if (boundary) {
+            auto timed = time("boundary");
             boundary->find_neighbours(positions, boundary_neighbours);
+        }
+    }
+
+    // Adds every effect's acceleration, each timed under its own name.
+    void apply_effects(const Params<D>& params, State<D>& state) {
+        for (const auto& effect : effects) {
+            auto timed = time(effect->name());
+            effect->apply(params, neighbours, state);
+        }
     }
 };
 

@@ -14,6 +14,7 @@ template <int D, class Kernel>
 void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
                           State<D>& state) {
     find_neighbours_and_density(params, kernel, context, state);
+    auto timed = context.time("pressure");
     compute_pressure_tait(params, state);
 }
 
@@ -26,9 +27,13 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
         // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
         density_and_pressure(params, kernel, context, state);
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2) grad W, walls included.
-        compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
-                                      context.boundary_neighbours, state);
+        {
+            auto timed = context.time("pressure");
+            compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
+                                          context.boundary_neighbours, state);
+        }
         // 3. Viscosity: Monaghan's artificial term, and the fluid's own (Morris).
+        auto timed = context.time("viscosity");
         if (params.artificial_viscosity > 0)
             add_artificial_viscosity(params, kernel, context.neighbours, context.boundary,
                                      context.boundary_neighbours, state);
@@ -37,7 +42,7 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
                                   context.boundary_neighbours, state);
     });
     // 4. Body forces and other effects the scene names.
-    apply_effects(context.effects, params, context.neighbours, state);
+    context.apply_effects(params, state);
 }
 
 template <int D>

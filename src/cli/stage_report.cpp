@@ -1,0 +1,40 @@
+#include "cli/stage_report.hpp"
+
+#include <fmt/format.h>
+
+namespace sph {
+
+std::vector<StageRow> stage_rows(const StageTimes& simulation, const StageTimes& after,
+                                 double wall_seconds, std::uint64_t particle_steps) {
+    std::vector<StageRow> rows;
+    for (const StageTimes* times : {&simulation, &after})
+        for (const auto& e : times->entries()) {
+            if (e.seconds <= 0)
+                continue;
+            rows.push_back({std::string(e.name), e.seconds,
+                            wall_seconds > 0 ? e.seconds / wall_seconds : 0,
+                            particle_steps ? e.seconds * 1e9 / double(particle_steps) : 0});
+        }
+    return rows;
+}
+
+nlohmann::json stages_json(const std::vector<StageRow>& rows) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& r : rows)
+        list.push_back({{"name", r.name},
+                        {"seconds", r.seconds},
+                        {"share", r.share},
+                        {"ns_per_particle_step", r.ns_per_particle_step}});
+    return list;
+}
+
+std::string stages_table(const std::vector<StageRow>& rows) {
+    std::string out = fmt::format("{:<24} {:>10} {:>7} {:>14}\n", "stage", "seconds", "share",
+                                  "ns/particle-step");
+    for (const auto& r : rows)
+        out += fmt::format("{:<24} {:>10.3f} {:>6.1f}% {:>14.1f}\n", r.name, r.seconds,
+                           100 * r.share, r.ns_per_particle_step);
+    return out;
+}
+
+} // namespace sph

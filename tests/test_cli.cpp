@@ -137,7 +137,7 @@ constexpr std::size_t tiny_3d_particles = 216;
 const std::string stats_header =
     "frame,time,steps,dt,particles,density_avg,density_max,density_error_avg_pct,"
     "density_error_max_pct,kinetic_energy,max_speed,dt_min,dt_max,pressure_iterations,"
-    "divergence_iterations,retries,state_hash,wall_s";
+    "divergence_iterations,retries,obstacle_pushes,state_hash,wall_s";
 
 fs::path write_scene(const TempFolder& tmp, const std::string& text,
                      const std::string& name = "scene.json") {
@@ -154,7 +154,7 @@ void check_run_outputs(const fs::path& out, int dimension, std::size_t particles
     REQUIRE(stats.rows.size() == frames);
     for (std::size_t k = 0; k < frames; ++k) {
         INFO("frame " << k);
-        REQUIRE(stats.rows[k].size() == 18);
+        REQUIRE(stats.rows[k].size() == 19);
         CHECK(stats.number(k, "frame") == double(k));
         CHECK(stats.number(k, "particles") == double(particles));
         const double time = stats.number(k, "time");

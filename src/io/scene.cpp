@@ -509,6 +509,141 @@ double physical_memory_bytes() {
     return pages > 0 && page_size > 0 ? double(pages) * double(page_size) : 0;
 }
 
+// effects.obstacles: each element a box or a sphere. With no list the keys
+// are still read, for the documentation. Checks against the domain and the
+// spacing come with the other checks of several fields.
+void read_obstacles(FieldReader& r, int dim, std::vector<SceneObstacle>& obstacles) {
+    const std::size_t count =
+        r.list("effects.obstacles", "none",
+               "Static obstacles the fluid flows around (wcsph, dfsph): each {\"box\": {...}} or "
+               "{\"sphere\": {...}}, made of boundary particles.");
+    for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i) {
+        const std::string p = fmt::format("effects.obstacles[{}]", i);
+        const auto min = r.optional_vector(p + ".box.min", dim, "m", "required",
+                                           "Lower corner of a box obstacle.");
+        const auto max = r.optional_vector(p + ".box.max", dim, "m", "required",
+                                           "Upper corner of a box obstacle.");
+        const auto centre = r.optional_vector(p + ".sphere.centre", dim, "m", "required",
+                                              "Centre of a sphere obstacle (a circle in 2D).");
+        const auto radius = r.optional_number(p + ".sphere.radius", "m", "required",
+                                              "Radius of a sphere obstacle.", Bound::positive);
+        if (i >= count)
+            break;
+        SceneObstacle o;
+        const json* box = r.find(p + ".box");
+        const json* sphere = r.find(p + ".sphere");
+        if (!box == !sphere)
+            r.fail(p, box ? "an obstacle is a box or a sphere, not both"
+                          : "expected {\"box\": {\"min\": [...], \"max\": [...]}} or "
+                            "{\"sphere\": {\"centre\": [...], \"radius\": r}}");
+        const std::string shape = box ? p + ".box" : p + ".sphere";
+        if (!(box ? box : sphere)->is_object())
+            r.fail(shape, "expected an object, got " + describe(box ? *box : *sphere));
+        if (box) {
+            if (!min || !max)
+                r.fail(shape + (min ? ".max" : ".min"), "a box obstacle needs min and max");
+            o.shape = ObstacleShape::box;
+            o.min = *min;
+            o.max = *max;
+        } else {
+            if (!centre || !radius)
+                r.fail(shape + (centre ? ".radius" : ".centre"),
+                       "a sphere obstacle needs centre and radius");
+            o.shape = ObstacleShape::sphere;
+            o.centre = *centre;
+            o.radius = *radius;
+        }
+        obstacles.push_back(o);
+    }
+}
+
+// effects.emitters: each a box, a velocity and a time window.
+void read_emitters(FieldReader& r, int dim, std::vector<SceneEmitter>& emitters) {
+    const std::size_t count = r.list(
+        "effects.emitters", "none",
+        "Streams of fluid entering the domain: each box is filled on the fluid's lattice and "
+        "emitted whole every (its thickness along velocity) / |velocity| seconds.");
+    for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i) {
+        const std::string p = fmt::format("effects.emitters[{}]", i);
+        const SceneEmitter fallback;
+        SceneEmitter e;
+        e.min = r.vector(p + ".min", fallback.min, dim, "m", "Lower corner of the emitter's box.");
+        e.max = r.vector(p + ".max", fallback.max, dim, "m", "Upper corner of the emitter's box.");
+        e.velocity = r.vector(p + ".velocity", fallback.velocity, dim, "m/s",
+                              "Velocity of the emitted particles (not zero).");
+        e.start = r.number(p + ".start", fallback.start, "s", "When the emitter starts.",
+                           Bound::non_negative);
+        e.end = r.number(p + ".end", fallback.end, "s", "When the emitter stops.",
+                         Bound::non_negative);
+        if (i >= count)
+            break;
+        double speed = 0;
+        for (int a = 0; a < dim; ++a)
+            speed += e.velocity[a] * e.velocity[a];
+        if (!(speed > 0))
+            r.fail(p + ".velocity", "an emitter needs a velocity that is not zero");
+        if (!(e.start < e.end))
+            r.fail(p + ".end", "must be after start");
+        emitters.push_back(e);
+    }
+}
+
+// Checks obstacle i against the domain and the spacing. Returns an upper
+// bound on the boundary particles its shell takes (sph/obstacles.cpp), in
+// floating point like the blocks' counts.
+double check_obstacle(const FieldReader& r, const Scene& s, std::size_t i, double layers) {
+    const SceneObstacle& o = s.effects.obstacles[i];
+    const int dim = s.dimension;
+    const double spacing = s.fluid.spacing;
+    const std::string p = fmt::format("effects.obstacles[{}]", i);
+    auto outside = [&](double lo, double hi, int a) {
+        const double tolerance = 1e-9 * (s.domain.max[a] - s.domain.min[a]);
+        return lo < s.domain.min[a] - tolerance || hi > s.domain.max[a] + tolerance;
+    };
+    if (o.shape == ObstacleShape::box) {
+        double sites = 1, interior = 1;
+        for (int a = 0; a < dim; ++a) {
+            if (!(o.min[a] < o.max[a]))
+                r.fail(p + ".box",
+                       fmt::format("min must be below max on every axis (axis {}: {} >= {})",
+                                   "xyz"[a], o.min[a], o.max[a]));
+            if (outside(o.min[a], o.max[a], a))
+                r.fail(p + ".box",
+                       fmt::format("the box [{}, {}] on axis {} is outside the domain [{}, {}]",
+                                   o.min[a], o.max[a], "xyz"[a], s.domain.min[a], s.domain.max[a]));
+            const double along = (o.max[a] - o.min[a]) / spacing;
+            if (!(along >= 1 - 1e-9))
+                r.fail(p + ".box",
+                       fmt::format("the box is thinner than one spacing ({} m) on axis {}: too "
+                                   "thin a solid for the fluid to see",
+                                   spacing, "xyz"[a]));
+            sites *= std::max(1.0, std::round(along));
+            interior *= std::max(0.0, std::round(along) - 2 * layers);
+        }
+        return sites - interior;
+    }
+    for (int a = 0; a < dim; ++a)
+        if (outside(o.centre[a], o.centre[a], a))
+            r.fail(p + ".sphere.centre",
+                   fmt::format("{} on axis {} is outside the domain [{}, {}]", o.centre[a],
+                               "xyz"[a], s.domain.min[a], s.domain.max[a]));
+    if (!(2 * o.radius >= spacing * (1 - 1e-9)))
+        r.fail(p + ".sphere.radius",
+               fmt::format("{} m is less than half a spacing ({} m): too small a solid for the "
+                           "fluid to see",
+                           o.radius, spacing));
+    for (int a = 0; a < dim; ++a)
+        if (outside(o.centre[a] - o.radius, o.centre[a] + o.radius, a))
+            r.fail(p + ".sphere.radius",
+                   fmt::format("the sphere reaches outside the domain on axis {} ([{}, {}] against "
+                               "[{}, {}])",
+                               "xyz"[a], o.centre[a] - o.radius, o.centre[a] + o.radius,
+                               s.domain.min[a], s.domain.max[a]));
+    const double around = dim == 2 ? 2 * M_PI * o.radius / spacing
+                                   : 4 * M_PI * o.radius * o.radius / (spacing * spacing);
+    return layers * (around + 1);
+}
+
 Scene read_fields(const json& root, const std::string& file, std::set<std::string> overridden,
                   std::vector<KeyDoc>* docs) {
     FieldReader r(root, file, std::move(overridden));
@@ -642,6 +777,16 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         "Gravity effect: a uniform acceleration. Absent from an `effects` object the scene "
         "gives (or null): no gravity.");
     s.effects.gravity = r.present("effects") ? gravity : d.effects.gravity;
+    const double gamma = r.number(
+        "effects.surface_tension.gamma", 1.0, "",
+        "Surface tension effect (Akinci et al. 2013: cohesion and curvature), its "
+        "coefficient gamma; a drop in zero gravity becomes round. Absent: no surface "
+        "tension.",
+        Bound::positive);
+    if (r.present("effects.surface_tension"))
+        s.effects.surface_tension = gamma;
+    read_obstacles(r, dim, s.effects.obstacles);
+    read_emitters(r, dim, s.effects.emitters);
 
     s.render.size = r.image_size("render.size", d.render.size, "Image width and height.");
     s.render.colour =
@@ -719,6 +864,10 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     if (s.solver.name == "seed" && s.solver.walls == "particles")
         r.fail("solver.walls", "the seed solver's walls reflect; boundary particles are for "
                                "wcsph and dfsph");
+    if (s.solver.name == "seed" && !s.effects.obstacles.empty())
+        r.fail("effects.obstacles", "obstacles are made of boundary particles, which the seed "
+                                    "solver (reflecting walls) does not have; use "
+                                    "solver.name=wcsph or dfsph");
     // Past this the frame counter's conversion from floating point overflows,
     // and the per-frame records outgrow any disk.
     if (!(s.duration * s.fps <= max_frames))
@@ -784,6 +933,36 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         }
         total += count;
     }
+    // Emitters: a box like a block's, and every particle they will make by
+    // the end of the run counts towards the limits.
+    for (std::size_t i = 0; i < s.effects.emitters.size(); ++i) {
+        const auto& e = s.effects.emitters[i];
+        const std::string p = fmt::format("effects.emitters[{}]", i);
+        double batch = 1, thickness = 0, speed = 0;
+        for (int a = 0; a < dim; ++a)
+            speed += e.velocity[a] * e.velocity[a];
+        speed = std::sqrt(speed);
+        for (int a = 0; a < dim; ++a) {
+            const double tolerance = 1e-9 * (s.domain.max[a] - s.domain.min[a]);
+            if (!(e.min[a] < e.max[a]))
+                r.fail(p, fmt::format("min must be below max on every axis (axis {}: {} >= {})",
+                                      "xyz"[a], e.min[a], e.max[a]));
+            if (e.min[a] < s.domain.min[a] - tolerance || e.max[a] > s.domain.max[a] + tolerance)
+                r.fail(p, fmt::format("the emitter's box [{}, {}] on axis {} is outside the "
+                                      "domain [{}, {}]",
+                                      e.min[a], e.max[a], "xyz"[a], s.domain.min[a],
+                                      s.domain.max[a]));
+            const double along = std::floor((e.max[a] - e.min[a]) / s.fluid.spacing + 1e-9);
+            if (!(along >= 1))
+                r.fail(p, fmt::format("the emitter's box is thinner than one spacing ({} m) on "
+                                      "axis {} and holds no particle",
+                                      s.fluid.spacing, "xyz"[a]));
+            batch *= along;
+            thickness += std::abs(e.velocity[a]) / speed * along * s.fluid.spacing;
+        }
+        const double running = std::max(0.0, std::min(e.end, s.duration) - e.start);
+        total += batch * (std::floor(running * speed / thickness) + 1);
+    }
     // Boundary particles (solver.walls = particles) fill layers around the
     // domain, and their lookup grid covers it.
     const bool wall_particles =
@@ -802,6 +981,15 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         }
         boundary = outer - inner;
     }
+    // Obstacles' shells; without wall particles their grid covers at most the domain.
+    for (std::size_t i = 0; i < s.effects.obstacles.size(); ++i)
+        boundary += check_obstacle(r, s, i, std::ceil(support));
+    if (!wall_particles && !s.effects.obstacles.empty()) {
+        grid_cells = 1;
+        for (int a = 0; a < dim; ++a)
+            grid_cells *=
+                std::floor((s.domain.max[a] - s.domain.min[a]) / s.fluid.spacing / support) + 1;
+    }
     const double fluid_bytes = total * bytes_per_particle(dim, support);
     const double wall_bytes = boundary * (2 * dim * 8 + 8 + 8 + 4) + grid_cells * 8;
     const double available = physical_memory_bytes();
@@ -809,7 +997,7 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     if (!(total <= max_particles) || !(boundary <= max_particles) ||
         (available > 0 && !(bytes <= 0.8 * available))) {
         const std::string walls =
-            wall_particles ? fmt::format(" and the walls {:.3g} boundary particles", boundary) : "";
+            boundary > 0 ? fmt::format(" and the walls {:.3g} boundary particles", boundary) : "";
         r.fail(fluid_bytes >= wall_bytes ? "fluid" : "domain",
                fmt::format("the blocks would hold {:.3g} particles{}, needing about {:.3g} GiB of "
                            "memory (this machine has {:.3g} GiB); use a larger fluid.spacing, "
@@ -936,7 +1124,8 @@ std::vector<KeyDoc> scene_keys() {
         if (docs[i].type != docs_3d[i].type) {
             docs[i].type =
                 docs[i].type.find("null") != std::string::npos ? "vector or null" : "vector";
-            docs[i].default_value += " (2D), " + docs_3d[i].default_value + " (3D)";
+            if (docs[i].default_value != docs_3d[i].default_value)
+                docs[i].default_value += " (2D), " + docs_3d[i].default_value + " (3D)";
         }
     }
     return docs;
@@ -1057,6 +1246,27 @@ json to_json(const Scene& s) {
     json effects = json::object();
     if (s.effects.gravity)
         effects["gravity"] = vec(*s.effects.gravity);
+    if (s.effects.surface_tension)
+        effects["surface_tension"] = {{"gamma", *s.effects.surface_tension}};
+    if (!s.effects.obstacles.empty()) {
+        json obstacles = json::array();
+        for (const auto& o : s.effects.obstacles)
+            obstacles.push_back(
+                o.shape == ObstacleShape::box
+                    ? json{{"box", {{"min", vec(o.min)}, {"max", vec(o.max)}}}}
+                    : json{{"sphere", {{"centre", vec(o.centre)}, {"radius", o.radius}}}});
+        effects["obstacles"] = obstacles;
+    }
+    if (!s.effects.emitters.empty()) {
+        json emitters = json::array();
+        for (const auto& e : s.effects.emitters)
+            emitters.push_back({{"min", vec(e.min)},
+                                {"max", vec(e.max)},
+                                {"velocity", vec(e.velocity)},
+                                {"start", e.start},
+                                {"end", e.end}});
+        effects["emitters"] = emitters;
+    }
     return {
         {"dimension", dim},
         {"duration", s.duration},

@@ -23,6 +23,25 @@ struct FluidBlock {
     Vec3 velocity{0, 0, 0};          // m/s, initial velocity of its particles
 };
 
+// A static solid the fluid flows around (effects.obstacles): a box, or a
+// sphere (a circle in 2D).
+struct SceneObstacle {
+    ObstacleShape shape = ObstacleShape::box;
+    Vec3 min{0, 0, 0}, max{0, 0, 0}; // m, the box's corners
+    Vec3 centre{0, 0, 0};            // m, the sphere's centre
+    double radius = 0;               // m, the sphere's radius
+};
+
+// A stream of fluid entering through a box (effects.emitters): the box is
+// filled on the fluid's lattice and emitted whole every thickness / |v|
+// seconds between start and end.
+struct SceneEmitter {
+    Vec3 min{0, 0, 0}, max{0, 0, 0}; // m
+    Vec3 velocity{0, 0, 0};          // m/s, not zero
+    double start = 0;                // s
+    double end = 1e300;              // s
+};
+
 struct Scene {
     std::string name = "default";        // the file's stem; the output folder's default name
     std::string file = "built-in scene"; // where it came from, for messages
@@ -65,7 +84,7 @@ struct Scene {
         int min_iterations = 2;                      // dfsph
         int max_iterations = 100;                    // dfsph
         bool warm_start = false;                     // dfsph
-        std::string neighbour_search = "hash";
+        std::string neighbour_search = "hash"; // hash (the seed's) | sorted_grid | all_pairs
     } solver;
 
     // The per-step checks (sph/watchdog.hpp).
@@ -79,6 +98,9 @@ struct Scene {
     // Each present key is an effect in the step; an absent one costs nothing.
     struct Effects {
         std::optional<Vec3> gravity = Vec3{0, -9.81, 0}; // m/s^2
+        std::optional<double> surface_tension;           // gamma (Akinci et al. 2013)
+        std::vector<SceneObstacle> obstacles;            // static solids; none by default
+        std::vector<SceneEmitter> emitters;              // fluid sources; none by default
     } effects;
 
     struct Render {
@@ -113,6 +135,8 @@ struct Derived {
     std::string walls;      // solver.walls resolved
     double sound_speed = 0; // m/s, sqrt(K / rho0)
     double max_speed = 0;   // m/s, watchdog.max_speed resolved
+    // Lattice sites of the blocks; the sites in or beside obstacles are left
+    // empty at setup (make_initial_state).
     std::size_t particles = 0;
 };
 

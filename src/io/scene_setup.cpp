@@ -1,6 +1,9 @@
 #include "io/scene_setup.hpp"
 
+#include "io/input_error.hpp"
+#include "sph/effects/emitter.hpp"
 #include "sph/effects/gravity.hpp"
+#include "sph/effects/surface_tension.hpp"
 #include "sph/lattice.hpp"
 
 namespace sph {
@@ -12,6 +15,15 @@ Vec<D> to_vec(const Vec3& v) {
     for (int a = 0; a < D; ++a)
         out[a] = v[a];
     return out;
+}
+
+template <int D>
+std::vector<Obstacle<D>> make_obstacles(const Scene& scene) {
+    std::vector<Obstacle<D>> obstacles;
+    for (const auto& o : scene.effects.obstacles)
+        obstacles.push_back(
+            {o.shape, {to_vec<D>(o.min), to_vec<D>(o.max)}, to_vec<D>(o.centre), o.radius});
+    return obstacles;
 }
 } // namespace
 
@@ -36,12 +48,16 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.watchdog = {scene.watchdog.retries, scene.watchdog.max_density_ratio,
                   scene.watchdog.max_displacement, derived.max_speed};
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
+    p.obstacles = make_obstacles<D>(scene);
     return p;
 }
 
 template <int D>
 State<D> make_initial_state(const Scene& scene, const Derived& derived) {
     const Real s = scene.fluid.spacing;
+    // Sites inside an obstacle, or too near one, are left empty: a block may
+    // be placed across an obstacle.
+    const std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene);
     State<D> state;
     state.resize(derived.particles);
     std::size_t next = 0;
@@ -59,6 +75,8 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
                 x[a] = block.min[a] + (Real(rest % count[a]) + Real(0.5)) * s;
                 rest /= count[a];
             }
+            if (blocked_by_obstacle<D>(obstacles, x, s))
+                continue;
             state.position[next] = x;
             state.velocity[next] = to_vec<D>(block.velocity);
             state.acceleration[next] = Vec<D>(0);
@@ -66,6 +84,11 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
             ++next;
         }
     }
+    if (next == 0)
+        throw InputError(scene.file, "effects.obstacles",
+                         "every fluid particle of the blocks lies inside an obstacle (or within "
+                         "half a spacing of one)");
+    state.resize(next);
     return state;
 }
 
@@ -74,6 +97,33 @@ EffectList<D> make_effects(const Scene& scene) {
     EffectList<D> effects;
     if (scene.effects.gravity)
         effects.push_back(std::make_unique<Gravity<D>>(to_vec<D>(*scene.effects.gravity)));
+    if (scene.effects.surface_tension)
+        effects.push_back(std::make_unique<SurfaceTension<D>>(*scene.effects.surface_tension));
+    for (const auto& e : scene.effects.emitters) {
+        // The box's lattice, as for a fluid block; its thickness along v.
+        const Real spacing = scene.fluid.spacing;
+        const Vec<D> velocity = to_vec<D>(e.velocity);
+        const Vec<D> along = velocity / glm::length(velocity);
+        glm::vec<D, std::size_t> count;
+        std::size_t total = 1;
+        Real thickness = 0;
+        for (int a = 0; a < D; ++a) {
+            count[a] = lattice_count(e.min[a], e.max[a], spacing);
+            total *= count[a];
+            thickness += std::abs(along[a]) * Real(count[a]) * spacing;
+        }
+        std::vector<Vec<D>> sites(total);
+        for (std::size_t k = 0; k < total; ++k) {
+            std::size_t rest = k;
+            for (int a = 0; a < D; ++a) {
+                sites[k][a] = e.min[a] + (Real(rest % count[a]) + Real(0.5)) * spacing;
+                rest /= count[a];
+            }
+        }
+        effects.push_back(std::make_unique<Emitter<D>>(Box<D>{to_vec<D>(e.min), to_vec<D>(e.max)},
+                                                       spacing, std::move(sites), velocity,
+                                                       thickness, e.start, e.end));
+    }
     return effects;
 }
 

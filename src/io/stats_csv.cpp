@@ -28,11 +28,12 @@ void StatsCsv::write(const Snapshot& f) {
     fmt::print(
         file_,
         "{},{:.9g},{},{:.6g},{},{:.9g},{:.9g},{:.6g},{:.6g},{:.9g},{:.9g},{:.6g},{:.6g},{:.4g},"
-        "{:.4g},{},{:016x},{:.3f}\n",
+        "{:.4g},{},{},{:016x},{:.3f}\n",
         f.frame, f.time, f.steps, c.dt_mean(), s.particles, s.density_avg, s.density_max,
         s.density_error_avg_pct, s.density_error_max_pct, s.kinetic_energy, s.max_speed,
         c.steps ? c.dt_min : 0, c.dt_max, Real(c.pressure_iterations) * per_step,
-        Real(c.divergence_iterations) * per_step, c.retries, state_hash(f), f.wall_seconds);
+        Real(c.divergence_iterations) * per_step, c.retries, c.obstacle_pushes, state_hash(f),
+        f.wall_seconds);
     if (std::fflush(file_) != 0)
         throw std::runtime_error("cannot write " + path_.string() + " (disk full?)");
 }

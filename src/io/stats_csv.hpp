@@ -19,7 +19,7 @@ class StatsCsv final : public FrameSink {
     static constexpr const char* header =
         "frame,time,steps,dt,particles,density_avg,density_max,density_error_avg_pct,"
         "density_error_max_pct,kinetic_energy,max_speed,dt_min,dt_max,pressure_iterations,"
-        "divergence_iterations,retries,state_hash,wall_s";
+        "divergence_iterations,retries,obstacle_pushes,state_hash,wall_s";
 
   private:
     std::filesystem::path path_;

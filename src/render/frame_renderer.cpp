@@ -72,6 +72,70 @@ struct OverlayVertex {
     float x, y, z, ramp;
 };
 
+// The obstacles, positions relative to `origin`: in 2D each a filled shape at
+// depth `behind` (behind the particles) with its outline; in 3D the edges of
+// a box and three great circles of a sphere.
+void append_obstacles(const RenderSettings& s, const glm::dvec3& origin, float behind,
+                      std::vector<OverlayVertex>& lines, std::vector<OverlayVertex>& fill) {
+    constexpr int segments = 64;
+    const bool flat = s.dimension == 2;
+    auto at = [&](const Vec3& p) {
+        return glm::vec3(float(p[0] - origin.x), float(p[1] - origin.y),
+                         flat ? 0.f : float(p[2] - origin.z));
+    };
+    auto line = [&](glm::vec3 p, glm::vec3 q) {
+        lines.push_back({p.x, p.y, p.z, -1});
+        lines.push_back({q.x, q.y, q.z, -1});
+    };
+    auto triangle = [&](glm::vec3 p, glm::vec3 q, glm::vec3 r) {
+        for (const glm::vec3& v : {p, q, r})
+            fill.push_back({v.x, v.y, behind, -1});
+    };
+    for (const SceneObstacle& o : s.obstacles) {
+        if (o.shape == ObstacleShape::box) {
+            const glm::vec3 lo = at(o.min), hi = at(o.max);
+            if (flat) {
+                const glm::vec3 c[4] = {
+                    {lo.x, lo.y, 0}, {hi.x, lo.y, 0}, {hi.x, hi.y, 0}, {lo.x, hi.y, 0}};
+                for (int k = 0; k < 4; ++k)
+                    line(c[k], c[(k + 1) % 4]);
+                triangle(c[0], c[1], c[2]);
+                triangle(c[0], c[2], c[3]);
+                continue;
+            }
+            for (int a = 0; a < 3; ++a)
+                for (int corner = 0; corner < 4; ++corner) {
+                    glm::vec3 p = lo;
+                    const int b = (a + 1) % 3, c = (a + 2) % 3;
+                    p[b] = corner & 1 ? hi[b] : lo[b];
+                    p[c] = corner & 2 ? hi[c] : lo[c];
+                    glm::vec3 q = p;
+                    q[a] = hi[a];
+                    line(p, q);
+                }
+            continue;
+        }
+        const glm::vec3 centre = at(o.centre);
+        const float radius = float(o.radius);
+        // 2D: the circle in the plane; 3D: one circle in each coordinate plane.
+        for (int plane = 0; plane < (flat ? 1 : 3); ++plane) {
+            const int a = plane, b = (plane + 1) % 3;
+            auto point = [&](int k) {
+                const float angle = 2.f * float(M_PI) * float(k) / float(segments);
+                glm::vec3 p = centre;
+                p[a] += radius * std::cos(angle);
+                p[b] += radius * std::sin(angle);
+                return p;
+            };
+            for (int k = 0; k < segments; ++k) {
+                line(point(k), point(k + 1));
+                if (flat)
+                    triangle(centre, point(k), point(k + 1));
+            }
+        }
+    }
+}
+
 } // namespace
 
 RenderSettings make_render_settings(const Scene& scene) {
@@ -86,6 +150,7 @@ RenderSettings make_render_settings(const Scene& scene) {
         r.domain_min[a] = scene.domain.min[a];
         r.domain_max[a] = scene.domain.max[a];
     }
+    r.obstacles = scene.effects.obstacles;
     // Physical scales of the scene for ranges it does not fix.
     const double height = r.domain_max.y - r.domain_min.y;
     double g = 0;
@@ -101,8 +166,10 @@ RenderSettings make_render_settings(const Scene& scene) {
     if (r.field == "velocity") {
         r.label = "speed (m/s)";
         r.colour_map = "viridis";
-        const double top = std::max(std::sqrt(2 * g * height) + block_speed, 1e-6);
-        r.range = {0, top};
+        // Nothing in the scene sets a speed (no gravity, a block at rest, as
+        // a drop pulled round by surface tension): a gentle 0.1 m/s.
+        const double top = std::sqrt(2 * g * height) + block_speed;
+        r.range = {0, top > 0 ? top : 0.1};
     } else if (r.field == "density") {
         r.label = "density (kg/m^3)";
         r.colour_map = "diverging";
@@ -110,7 +177,8 @@ RenderSettings make_render_settings(const Scene& scene) {
     } else {
         r.label = "pressure (Pa)";
         r.colour_map = "turbo";
-        r.range = {0, std::max(rho0 * g * height, 1e-6)};
+        const double top = rho0 * g * height;
+        r.range = {0, top > 0 ? top : 0.5 * rho0 * 0.1 * 0.1}; // as for speed
     }
     if (scene.render.colour_map != "auto")
         r.colour_map = scene.render.colour_map;
@@ -392,6 +460,8 @@ Image FrameRenderer::render(const Snapshot& frame) {
                 g.lines.push_back({q.x, q.y, q.z, -1});
             }
     }
+    g.overlay_triangles.clear();
+    append_obstacles(s, origin, float(-2 * s.radius), g.lines, g.overlay_triangles);
     glUseProgram(g.overlay_program);
     glBindVertexArray(g.overlay_vao);
     glUniform1i(glGetUniformLocation(g.overlay_program, "u_colour_map"), 0);
@@ -408,6 +478,7 @@ Image FrameRenderer::render(const Snapshot& frame) {
                      glm::value_ptr(colour));
         glDrawArrays(mode, 0, GLsizei(vertices.size()));
     };
+    draw_overlay(g.overlay_triangles, GL_TRIANGLES, projection * view, {0.3f, 0.32f, 0.36f, 1.f});
     draw_overlay(g.lines, GL_LINES, projection * view, {0.55f, 0.58f, 0.62f, 1.f});
 
     // Colour bar, its labels and the caption, in pixels (y down).

@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace sph {
 
@@ -26,6 +27,7 @@ struct RenderSettings {
     int mesh_subdivisions = 1;         // mesh: 80 triangles per sphere
     double radius = 0.001;             // m, drawn sphere radius
     glm::dvec3 domain_min{0}, domain_max{1};
+    std::vector<SceneObstacle> obstacles;            // drawn solid (2D) or as wire outlines (3D)
     glm::dvec3 camera_position{0}, camera_target{0}; // 3D
     double fov = 40;                                 // degrees, vertical
     int samples = 4;                                 // multisampling

@@ -3,6 +3,7 @@
 #include "sph/lattice.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <numeric>
 
@@ -59,13 +60,13 @@ void BoundaryParticles<D>::for_each_near(const Vec<D>& x, Visit&& visit) const {
 }
 
 template <int D>
-void BoundaryParticles<D>::build_grid(std::vector<Vec<D>> positions) {
+std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> positions) {
     const std::size_t n = positions.size();
     if (n == 0) {
         cell_start_.assign(2, 0);
         for (int a = 0; a < D; ++a)
             cells_[a] = 1;
-        return;
+        return {};
     }
     Vec<D> lo = positions[0], hi = positions[0];
     for (const Vec<D>& x : positions) {
@@ -87,9 +88,13 @@ void BoundaryParticles<D>::build_grid(std::vector<Vec<D>> positions) {
     }
     std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
     std::vector<std::uint32_t> next(cell_start_.begin(), cell_start_.end() - 1);
+    std::vector<std::uint32_t> destination(n);
     positions_.resize(n);
-    for (std::size_t b = 0; b < n; ++b)
-        positions_[next[cell[b]]++] = positions[b];
+    for (std::size_t b = 0; b < n; ++b) {
+        destination[b] = next[cell[b]]++;
+        positions_[destination[b]] = positions[b];
+    }
+    return destination;
 }
 
 template <int D>
@@ -97,6 +102,17 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, R
     : h_(h) {
     build_grid(std::move(positions));
     volumes_.assign(positions_.size(), volume);
+}
+
+template <int D>
+BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes,
+                                        Real h)
+    : h_(h) {
+    assert(positions.size() == volumes.size());
+    const std::vector<std::uint32_t> destination = build_grid(std::move(positions));
+    volumes_.resize(volumes.size());
+    for (std::size_t b = 0; b < volumes.size(); ++b)
+        volumes_[destination[b]] = volumes[b];
 }
 
 template <int D>

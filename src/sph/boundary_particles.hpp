@@ -27,6 +27,9 @@ class BoundaryParticles {
     BoundaryParticles(std::vector<Vec<D>> positions, Real h, KernelKind kernel);
     // Particles at `positions` that each fill the same volume.
     BoundaryParticles(std::vector<Vec<D>> positions, Real h, Real volume);
+    // Particles at `positions`, each filling its own volume (volumes[b] for
+    // positions[b]): domain walls and obstacles in one set (sph/obstacles.hpp).
+    BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes, Real h);
 
     // The walls of `domain`: every lattice site (spacing s, aligned with the
     // fluid lattice that starts half a spacing inside the box) outside the box
@@ -47,7 +50,8 @@ class BoundaryParticles {
     void find_neighbours(std::span<const Vec<D>> query, NeighbourList& out) const;
 
   private:
-    void build_grid(std::vector<Vec<D>> positions);
+    // Sorts the particles into the grid; where each of `positions` went.
+    std::vector<std::uint32_t> build_grid(std::vector<Vec<D>> positions);
     using Cell = glm::vec<D, std::int64_t, glm::defaultp>;
     Cell cell_of(const Vec<D>& x) const;
     std::size_t cell_index(const Cell& c) const;

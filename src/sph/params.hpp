@@ -3,10 +3,12 @@
 // `const Params&` to every stage. Changing quantities live in State.
 
 #include "sph/kernels.hpp"
+#include "sph/obstacles.hpp"
 #include "sph/vec.hpp"
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace sph {
 
@@ -54,6 +56,8 @@ struct Params {
     Real viscosity = 0;            // Pa.s, dynamic viscosity mu
     Real artificial_viscosity = 0; // alpha of Monaghan's artificial viscosity (wcsph)
     Box<D> domain;                 // m, the walls
+    // Static solids inside the domain, made of boundary particles (obstacles.hpp).
+    std::vector<Obstacle<D>> obstacles;
     KernelKind kernel = KernelKind::seed;
     Integrator integrator = Integrator::symplectic_euler;
     WallModel walls = WallModel::reflect;

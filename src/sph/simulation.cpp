@@ -5,16 +5,37 @@
 
 namespace sph {
 
+namespace {
+
+// The one set of boundary particles the solvers see: the domain walls' when
+// they are particles, and the obstacles' shells. None when neither exists.
+template <int D>
+std::optional<BoundaryParticles<D>> make_boundary(const Params<D>& p) {
+    const Real lattice_volume = p.mass / p.rest_density;
+    BoundarySamples<D> samples = sample_obstacles<D>(p.obstacles, p.spacing, p.h, lattice_volume);
+    if (p.walls == WallModel::particles) {
+        const auto walls =
+            BoundaryParticles<D>::box_walls(p.domain, p.spacing, p.h, lattice_volume);
+        if (samples.positions.empty())
+            return walls;
+        samples.positions.insert(samples.positions.end(), walls.positions().begin(),
+                                 walls.positions().end());
+        samples.volumes.insert(samples.volumes.end(), walls.volumes().begin(),
+                               walls.volumes().end());
+    } else if (samples.positions.empty()) {
+        return std::nullopt;
+    }
+    return BoundaryParticles<D>(std::move(samples.positions), std::move(samples.volumes), p.h);
+}
+
+} // namespace
+
 template <int D>
 Simulation<D>::Simulation(const Params<D>& params, State<D> initial,
                           std::unique_ptr<Solver<D>> solver,
                           std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects)
     : params_(params), state_(std::move(initial)), solver_(std::move(solver)),
-      search_(std::move(search)), effects_(std::move(effects)) {
-    if (params_.walls == WallModel::particles)
-        boundary_ = BoundaryParticles<D>::box_walls(params_.domain, params_.spacing, params_.h,
-                                                    params_.mass / params_.rest_density);
-}
+      search_(std::move(search)), effects_(std::move(effects)), boundary_(make_boundary(params_)) {}
 
 template <int D>
 Real Simulation<D>::next_dt() const {
@@ -22,8 +43,10 @@ Real Simulation<D>::next_dt() const {
         return params_.time_step.dt;
     StageTimes::Scope timed(&stages_, "time step");
     ExtremeRates rates = measure_rates(state_);
-    for (const auto& effect : effects_)
+    for (const auto& effect : effects_) {
         rates.max_acceleration = std::max(rates.max_acceleration, effect->body_acceleration());
+        rates.max_speed = std::max(rates.max_speed, effect->speed());
+    }
     return stable_time_step(params_, solver_->time_step_model(), rates);
 }
 
@@ -39,6 +62,7 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
         counters_.dt_sum += dt;
         counters_.pressure_iterations += report.pressure_iterations;
         counters_.divergence_iterations += report.divergence_iterations;
+        counters_.obstacle_pushes += report.obstacle_pushes;
         StageTimes::Scope timed(&stages_, "watchdog");
         if (auto problem = inspect_step(params_, state_, dt))
             return problem;
@@ -48,6 +72,12 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
 
 template <int D>
 void Simulation<D>::step_by(Real dt) {
+    // Effects that change the particle set (emitters) act first, outside
+    // the watchdog's retries, so a retried step keeps what they added.
+    for (const auto& effect : effects_) {
+        StageTimes::Scope timed(&stages_, effect->name());
+        effect->before_step(params_, time_, state_);
+    }
     // Copy assignment reuses saved_'s memory: no allocation once sizes settle.
     {
         StageTimes::Scope timed(&stages_, "watchdog");

@@ -18,7 +18,8 @@ namespace sph {
 template <int D>
 class Simulation {
   public:
-    // The wall particles are made here when params.walls asks for them.
+    // The boundary particles are made here: the domain walls' when
+    // params.walls asks for them, and the obstacles'.
     Simulation(const Params<D>& params, State<D> initial, std::unique_ptr<Solver<D>> solver,
                std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects);
 
@@ -48,7 +49,7 @@ class Simulation {
     // Neighbours as the last step or update_fields() found them.
     const NeighbourList& neighbours() const { return neighbours_; }
     const EffectList<D>& effects() const { return effects_; }
-    // Null when the walls reflect.
+    // Null when the walls reflect and there is no obstacle.
     const BoundaryParticles<D>* boundary() const { return boundary_ ? &*boundary_ : nullptr; }
     Real time() const { return time_; }
     // Time per stage since the start, and the particle-steps it was spent on

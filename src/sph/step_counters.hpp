@@ -15,7 +15,8 @@ struct StepCounters {
     Real dt_sum = 0;                                     // s
     std::uint64_t pressure_iterations = 0;               // summed over the steps
     std::uint64_t divergence_iterations = 0;             // summed over the steps
-    std::uint64_t retries = 0; // steps the watchdog rejected and retried halved
+    std::uint64_t retries = 0;         // steps the watchdog rejected and retried halved
+    std::uint64_t obstacle_pushes = 0; // particles put back out of an obstacle, summed
 
     Real dt_mean() const { return steps ? dt_sum / Real(steps) : 0; }
 };

@@ -21,6 +21,14 @@ template <int D>
 struct Box {
     Vec<D> min{0};
     Vec<D> max{1};
+
+    // Strictly inside (a point on a face is not).
+    bool contains(const Vec<D>& x) const {
+        for (int a = 0; a < D; ++a)
+            if (!(x[a] > min[a] && x[a] < max[a]))
+                return false;
+        return true;
+    }
 };
 
 template <int D>

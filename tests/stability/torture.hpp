@@ -21,7 +21,8 @@ struct Case {
     // this (m/s): the case is a fluid at rest.
     double rest_speed = 0;
     // Solvers whose model cannot simulate the case: the watchdog must stop
-    // them cleanly (exit 3) before any invariant breaks.
+    // them cleanly (exit 3) before any invariant breaks. The seed may stop
+    // cleanly in any case (see Result::passed).
     std::vector<std::string> stops = {};
 };
 

@@ -20,12 +20,19 @@ class Effect {
     // The key naming the effect in the scene's `effects` object.
     virtual std::string_view name() const = 0;
     // Adds this effect's acceleration to state.acceleration.
+    // Not const: an effect may keep per-particle arrays of its own.
     virtual void apply(const Params<D>& params, const NeighbourList& neighbours,
-                       State<D>& state) const = 0;
+                       State<D>& state) = 0;
     // The magnitude of a uniform acceleration it gives every particle (0 if
     // none), known before any step: the time step's force condition needs
     // it on the first step, before any acceleration has been computed.
     virtual Real body_acceleration() const { return 0; }
+    // Changes the particle set before a step that starts at `time` (an
+    // emitter adds particles); most effects do nothing here.
+    virtual void before_step(const Params<D>&, Real /*time*/, State<D>&) {}
+    // The speed it gives the particles it makes (0 if none), for the time
+    // step's first estimate.
+    virtual Real speed() const { return 0; }
 };
 
 template <int D>

@@ -2,6 +2,7 @@
 
 #include "sph/boundary.hpp"
 #include "sph/integrate.hpp"
+#include "sph/obstacles.hpp"
 #include "sph/pair_direction.hpp"
 #include "sph/solvers/density_with_walls.hpp"
 #include "sph/viscosity.hpp"
@@ -242,13 +243,15 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
             state.density[i] * state.density[i] * (stiffness_sum_[i] + divergence_sum_[i]) / dt;
     previous_dt_ = dt;
     solve_timed.reset();
-    // 5. Move; the reflecting box stays behind the wall particles as a last guard.
+    // 5. Move; the reflecting box and the obstacles' surfaces stay behind the
+    // boundary particles as a last guard.
     {
         auto timed = context.time("integration");
         drift(dt, state);
     }
     auto timed = context.time("boundary");
     reflect_at_box(params, state);
+    report.obstacle_pushes = push_out_of_obstacles<D>(params.obstacles, state);
     return report;
 }
 

@@ -9,6 +9,7 @@
 
 #include "sph/boundary.hpp"
 #include "sph/integrate.hpp"
+#include "sph/obstacles.hpp"
 #include "sph/solvers/solver.hpp"
 
 namespace sph {
@@ -20,6 +21,7 @@ class ExplicitSolver : public Solver<D> {
 
     StepReport step(const Params<D>& params, Real dt, State<D>& state,
                     StepContext<D>& context) override {
+        StepReport report;
         if (params.integrator == Integrator::verlet) {
             if (!accelerations_current_ || state.size() != accelerations_for_)
                 compute_accelerations(params, state, context);
@@ -28,7 +30,7 @@ class ExplicitSolver : public Solver<D> {
                 kick(dt / 2, state);
                 drift(dt, state);
             }
-            reflect(params, state, context);
+            report.obstacle_pushes = reflect(params, state, context);
             compute_accelerations(params, state, context);
             auto timed = context.time("integration");
             kick(dt / 2, state);
@@ -40,9 +42,9 @@ class ExplicitSolver : public Solver<D> {
                 auto timed = context.time("integration");
                 integrate_symplectic_euler(dt, state);
             }
-            reflect(params, state, context);
+            report.obstacle_pushes = reflect(params, state, context);
         }
-        return {};
+        return report;
     }
 
   protected:
@@ -51,9 +53,13 @@ class ExplicitSolver : public Solver<D> {
                                        StepContext<D>& context) = 0;
 
   private:
-    static void reflect(const Params<D>& params, State<D>& state, StepContext<D>& context) {
+    // The last guards: the reflecting box, then the obstacles' surfaces.
+    // Returns the particles put back out of obstacles.
+    static std::uint64_t reflect(const Params<D>& params, State<D>& state,
+                                 StepContext<D>& context) {
         auto timed = context.time("boundary");
         reflect_at_box(params, state);
+        return push_out_of_obstacles<D>(params.obstacles, state);
     }
 
     bool accelerations_current_ = false;

@@ -8,6 +8,7 @@
 #include "sph/stage_times.hpp"
 #include "sph/time_step.hpp"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -53,8 +54,9 @@ struct StepContext {
 
 // What one step did, for stats.csv.
 struct StepReport {
-    int pressure_iterations = 0;   // dfsph: density solve
-    int divergence_iterations = 0; // dfsph: divergence solve
+    int pressure_iterations = 0;       // dfsph: density solve
+    int divergence_iterations = 0;     // dfsph: divergence solve
+    std::uint64_t obstacle_pushes = 0; // particles put back out of an obstacle (obstacles.hpp)
 };
 
 template <int D>

@@ -1,0 +1,124 @@
+// sphclip_bench_effects: what each effect costs. One scene (the built-in 2D
+// dam break, wcsph) is stepped with effects added one by one; for each
+// configuration it prints the time per step and per particle-step, and the
+// cost of the added stage alone (from the simulation's stage times).
+//   sphclip_bench_effects [--quick] [--steps N] [--csv FILE]
+
+#include "io/scene_setup.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fmt/format.h>
+#include <omp.h>
+#include <string>
+#include <vector>
+
+using namespace sph;
+
+namespace {
+
+struct Config {
+    std::string label, added_stage;
+    std::vector<Override> overrides;
+};
+
+} // namespace
+
+int main(int argc, char** argv) {
+    int steps = 300;
+    bool quick = false;
+    std::FILE* csv = nullptr;
+    for (int k = 1; k < argc; ++k) {
+        if (std::strcmp(argv[k], "--quick") == 0) {
+            quick = true;
+            steps = 3;
+        } else if (std::strcmp(argv[k], "--steps") == 0 && k + 1 < argc) {
+            steps = std::atoi(argv[++k]);
+        } else if (std::strcmp(argv[k], "--csv") == 0 && k + 1 < argc) {
+            csv = std::fopen(argv[++k], "w");
+            if (!csv)
+                return 2;
+        } else {
+            fmt::print(stderr, "usage: sphclip_bench_effects [--quick] [--steps N] [--csv FILE]\n");
+            return 2;
+        }
+    }
+    const std::string spacing = quick ? "0.005715" : "0.00142875";
+    const std::vector<Override> base{{"solver.name", "wcsph"},
+                                     {"solver.dt", "1e-4"},
+                                     {"fluid.spacing", spacing},
+                                     {"material.viscosity", "0"},
+                                     {"solver.artificial_viscosity", "0"},
+                                     {"effects", "{}"}};
+    const std::string gravity = R"("gravity": [0, -9.81])";
+    const std::vector<Config> configs{
+        {"pressure only (no effects, no viscosity)", "", {}},
+        {"+ gravity", "gravity", {{"effects", "{" + gravity + "}"}}},
+        {"+ artificial viscosity (alpha 0.02)",
+         "viscosity",
+         {{"effects", "{" + gravity + "}"}, {"solver.artificial_viscosity", "0.02"}}},
+        {"+ laminar viscosity (Morris, 1 Pa.s)",
+         "viscosity",
+         {{"effects", "{" + gravity + "}"},
+          {"solver.artificial_viscosity", "0.02"},
+          {"material.viscosity", "1"}}},
+        {"+ surface tension (gamma 1)",
+         "surface_tension",
+         {{"effects", "{" + gravity + R"(, "surface_tension": {"gamma": 1}})"},
+          {"solver.artificial_viscosity", "0.02"},
+          {"material.viscosity", "1"}}},
+        {"+ emitter (10 particles / 4 ms)",
+         "emitters",
+         {{"effects",
+           "{" + gravity +
+               R"(, "surface_tension": {"gamma": 1}, "emitters": [{"min": [0.3, 0.15], "max": [0.306, 0.19], "velocity": [-1, 0]}]})"},
+          {"solver.artificial_viscosity", "0.02"},
+          {"material.viscosity", "1"}}},
+    };
+    fmt::print("effects benchmark: built-in 2D dam break, wcsph, spacing {} m, dt 1e-4 s, {} "
+               "steps, {} threads\n\n",
+               spacing, steps, omp_get_max_threads());
+    fmt::print("| configuration | particles | ms / step | ns / particle-step | added stage, ns / "
+               "particle-step |\n|---|---|---|---|---|\n");
+    if (csv)
+        fmt::print(csv, "configuration,particles,ms_per_step,ns_per_particle_step,added_stage,"
+                        "added_ns_per_particle_step\n");
+    for (const auto& c : configs) {
+        std::vector<Override> o = base;
+        o.insert(o.end(), c.overrides.begin(), c.overrides.end());
+        auto sim = make_simulation<2>(default_scene(o));
+        for (int k = 0; k < (quick ? 1 : 20); ++k) // warm up: lists and arrays sized
+            sim.step();
+        const auto steps_before = sim.particle_steps();
+        std::vector<double> stage_before;
+        auto stage_seconds = [&](std::string_view name) {
+            for (const auto& e : sim.stage_times().entries())
+                if (e.name == name)
+                    return e.seconds;
+            return 0.0;
+        };
+        const double added_before = stage_seconds(c.added_stage);
+        const auto start = std::chrono::steady_clock::now();
+        for (int k = 0; k < steps; ++k)
+            sim.step();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double particle_steps = double(sim.particle_steps() - steps_before);
+        const double added = stage_seconds(c.added_stage) - added_before;
+        const std::string added_text =
+            c.added_stage.empty()
+                ? "-"
+                : fmt::format("{:.1f} ({})", added * 1e9 / particle_steps, c.added_stage);
+        fmt::print("| {} | {} | {:.3f} | {:.1f} | {} |\n", c.label, sim.state().size(),
+                   seconds * 1e3 / steps, seconds * 1e9 / particle_steps, added_text);
+        if (csv)
+            fmt::print(csv, "\"{}\",{},{:.4f},{:.2f},{},{:.2f}\n", c.label, sim.state().size(),
+                       seconds * 1e3 / steps, seconds * 1e9 / particle_steps, c.added_stage,
+                       c.added_stage.empty() ? 0.0 : added * 1e9 / particle_steps);
+        std::fflush(stdout);
+    }
+    if (csv)
+        std::fclose(csv);
+    return 0;
+}

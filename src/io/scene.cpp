@@ -768,7 +768,8 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.watchdog.max_speed = r.optional_number(
         "watchdog.max_speed", "m/s", "auto",
         "Speed above which a step counts as failed. Default: twice the sum of the sound "
-        "speed, the speed of a fall over the whole domain and the fastest initial velocity.",
+        "speed, the speed of a fall over the whole domain and the fastest initial or "
+        "emitter velocity.",
         Bound::positive);
 
     // A scene that gives an `effects` object gets exactly the effects it lists.
@@ -910,58 +911,48 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     // Counts in floating point, so that absurd requests are caught before any
     // cast or allocation; each axis on its own, so that 0 x infinity (NaN)
     // cannot slip past the limits below.
+    // A box filled on the lattice (a block, an emitter's box): inside the
+    // domain, at least one particle on every axis. Particles along each axis.
+    auto lattice_box = [&](const std::string& p, const char* what, const Vec3& min,
+                           const Vec3& max) {
+        std::array<double, 3> along{1, 1, 1};
+        for (int a = 0; a < dim; ++a) {
+            if (!(min[a] < max[a]))
+                r.fail(p, fmt::format("min must be below max on every axis (axis {}: {} >= {})",
+                                      "xyz"[a], min[a], max[a]));
+            const double tolerance = 1e-9 * (s.domain.max[a] - s.domain.min[a]);
+            if (min[a] < s.domain.min[a] - tolerance || max[a] > s.domain.max[a] + tolerance)
+                r.fail(p, fmt::format("the {} [{}, {}] on axis {} is outside the domain [{}, {}]",
+                                      what, min[a], max[a], "xyz"[a], s.domain.min[a],
+                                      s.domain.max[a]));
+            along[a] = std::floor((max[a] - min[a]) / s.fluid.spacing + 1e-9);
+            if (!(along[a] >= 1))
+                r.fail(p, fmt::format("the {} is thinner than one spacing ({} m) on axis {} and "
+                                      "holds no particle",
+                                      what, s.fluid.spacing, "xyz"[a]));
+        }
+        return along;
+    };
     double total = 0;
     for (std::size_t i = 0; i < s.fluid.blocks.size(); ++i) {
         const auto& b = s.fluid.blocks[i];
-        const std::string p = fmt::format("fluid.blocks[{}]", i);
-        double count = 1;
-        for (int a = 0; a < dim; ++a) {
-            if (!(b.min[a] < b.max[a]))
-                r.fail(p, fmt::format("min must be below max on every axis (axis {}: {} >= {})",
-                                      "xyz"[a], b.min[a], b.max[a]));
-            const double tolerance = 1e-9 * (s.domain.max[a] - s.domain.min[a]);
-            if (b.min[a] < s.domain.min[a] - tolerance || b.max[a] > s.domain.max[a] + tolerance)
-                r.fail(p,
-                       fmt::format("the block [{}, {}] on axis {} is outside the domain [{}, {}]",
-                                   b.min[a], b.max[a], "xyz"[a], s.domain.min[a], s.domain.max[a]));
-            const double along = std::floor((b.max[a] - b.min[a]) / s.fluid.spacing + 1e-9);
-            if (!(along >= 1))
-                r.fail(p, fmt::format("the block is thinner than one spacing ({} m) on axis {} and "
-                                      "holds no particle",
-                                      s.fluid.spacing, "xyz"[a]));
-            count *= along;
-        }
-        total += count;
+        const auto along = lattice_box(fmt::format("fluid.blocks[{}]", i), "block", b.min, b.max);
+        total += along[0] * along[1] * along[2];
     }
-    // Emitters: a box like a block's, and every particle they will make by
-    // the end of the run counts towards the limits.
+    // Emitters: every particle they will make by the end of the run counts
+    // towards the limits.
     for (std::size_t i = 0; i < s.effects.emitters.size(); ++i) {
         const auto& e = s.effects.emitters[i];
-        const std::string p = fmt::format("effects.emitters[{}]", i);
-        double batch = 1, thickness = 0, speed = 0;
+        const auto along =
+            lattice_box(fmt::format("effects.emitters[{}]", i), "emitter's box", e.min, e.max);
+        double speed = 0, thickness = 0;
         for (int a = 0; a < dim; ++a)
             speed += e.velocity[a] * e.velocity[a];
         speed = std::sqrt(speed);
-        for (int a = 0; a < dim; ++a) {
-            const double tolerance = 1e-9 * (s.domain.max[a] - s.domain.min[a]);
-            if (!(e.min[a] < e.max[a]))
-                r.fail(p, fmt::format("min must be below max on every axis (axis {}: {} >= {})",
-                                      "xyz"[a], e.min[a], e.max[a]));
-            if (e.min[a] < s.domain.min[a] - tolerance || e.max[a] > s.domain.max[a] + tolerance)
-                r.fail(p, fmt::format("the emitter's box [{}, {}] on axis {} is outside the "
-                                      "domain [{}, {}]",
-                                      e.min[a], e.max[a], "xyz"[a], s.domain.min[a],
-                                      s.domain.max[a]));
-            const double along = std::floor((e.max[a] - e.min[a]) / s.fluid.spacing + 1e-9);
-            if (!(along >= 1))
-                r.fail(p, fmt::format("the emitter's box is thinner than one spacing ({} m) on "
-                                      "axis {} and holds no particle",
-                                      s.fluid.spacing, "xyz"[a]));
-            batch *= along;
-            thickness += std::abs(e.velocity[a]) / speed * along * s.fluid.spacing;
-        }
+        for (int a = 0; a < dim; ++a)
+            thickness += std::abs(e.velocity[a]) / speed * along[a] * s.fluid.spacing;
         const double running = std::max(0.0, std::min(e.end, s.duration) - e.start);
-        total += batch * (std::floor(running * speed / thickness) + 1);
+        total += along[0] * along[1] * along[2] * (std::floor(running * speed / thickness) + 1);
     }
     // Boundary particles (solver.walls = particles) fill layers around the
     // domain, and their lookup grid covers it.
@@ -1177,7 +1168,8 @@ Derived derive(const Scene& s) {
     d.sound_speed = std::sqrt(s.material.bulk_modulus / s.material.rest_density);
     {
         // The fastest a motion of this scene can physically be: the sound
-        // speed, a free fall over the whole box, and the fastest start; twice
+        // speed, a free fall over the whole box, and the fastest start (a
+        // block's or an emitter's); twice
         // that is garbage, however small the step (watchdog.max_speed).
         double g = 0, height = 0, v0 = 0;
         for (int a = 0; a < dim; ++a) {
@@ -1185,12 +1177,16 @@ Derived derive(const Scene& s) {
                 g += (*s.effects.gravity)[a] * (*s.effects.gravity)[a];
             height = std::max(height, s.domain.max[a] - s.domain.min[a]);
         }
-        for (const auto& b : s.fluid.blocks) {
+        auto fastest = [&](const Vec3& v) {
             double v2 = 0;
             for (int a = 0; a < dim; ++a)
-                v2 += b.velocity[a] * b.velocity[a];
+                v2 += v[a] * v[a];
             v0 = std::max(v0, std::sqrt(v2));
-        }
+        };
+        for (const auto& b : s.fluid.blocks)
+            fastest(b.velocity);
+        for (const auto& e : s.effects.emitters)
+            fastest(e.velocity);
         d.max_speed = s.watchdog.max_speed
                           ? *s.watchdog.max_speed
                           : 2 * (d.sound_speed + std::sqrt(2 * std::sqrt(g) * height) + v0);

@@ -76,7 +76,9 @@ double total_energy(const Scene& scene, const std::string& solver, const Params<
 
 template <int D>
 Result run_scene(const Scene& scene, const Case& c, const std::string& solver) {
-    Result r{c.scene, solver};
+    Result r;
+    r.scene = c.scene;
+    r.solver = solver;
     const Derived derived = derive(scene);
     auto sim = make_simulation<D>(scene, derived);
     const Params<D>& p = sim.params();

@@ -5,6 +5,10 @@
 #include "io/scene.hpp"
 #include "support/temp_folder.hpp"
 
+extern "C" {
+#include <libavformat/avformat.h>
+}
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -751,4 +755,46 @@ TEST_CASE("output.name picks the folder under out/ and cannot leave it", "[cli]"
         CHECK(result.exit_code == 0);
         CHECK(fs::exists(out / "stats.csv"));
     }
+}
+
+TEST_CASE("a fast preview (--fast-preview) renders half-size frames with the fastest preset and says so",
+          "[cli][render][fast_preview]") {
+    TempFolder tmp;
+    const fs::path out = tmp / "out";
+    // An odd half (161 x 91) is rounded to even: 162 x 92.
+    const std::string scene =
+        tiny_2d.substr(0, tiny_2d.rfind('}')) + R"(, "render": {"size": [322, 182]}})";
+    const auto result = sphclip(
+        tmp, {"run", write_scene(tmp, scene).string(), "--out", out.string(), "--fast-preview"});
+    INFO(result.output);
+    REQUIRE(result.exit_code == 0);
+    CHECK(
+        contains(result.output, "fast preview: half-size frames (162x92), x264 preset ultrafast"));
+    for (int k = 0; k < 3; ++k) {
+        const sph::Image frame = sph::read_png(out / "frames" / fmt::format("frame_{:05d}.png", k));
+        CHECK(frame.width == 162);
+        CHECK(frame.height == 92);
+    }
+    const json run = json::parse(read_text(out / "run.json"));
+    CHECK(run.at("fast_preview") == true);
+    CHECK(run.at("scene").at("render").at("size") == json::array({162, 92}));
+    CHECK(run.at("scene").at("render").at("video_preset") == "ultrafast");
+
+    // A valid H.264 MP4 of that size, as a player opens it.
+    AVFormatContext* video = nullptr;
+    REQUIRE(avformat_open_input(&video, (out / "clip.mp4").c_str(), nullptr, nullptr) == 0);
+    CHECK(avformat_find_stream_info(video, nullptr) >= 0);
+    REQUIRE(video->nb_streams == 1);
+    const AVCodecParameters& codec = *video->streams[0]->codecpar;
+    CHECK(codec.codec_id == AV_CODEC_ID_H264);
+    CHECK(codec.width == 162);
+    CHECK(codec.height == 92);
+    avformat_close_input(&video);
+
+    // Without the flag: the scene's own size, and no claim of a preview.
+    const auto full = sphclip(tmp, {"run", write_scene(tmp, scene).string(), "--out",
+                                    (tmp / "full").string(), "--quiet", "--no-mp4"});
+    REQUIRE(full.exit_code == 0);
+    CHECK(sph::read_png(tmp / "full" / "frames" / "frame_00000.png").width == 322);
+    CHECK(json::parse(read_text(tmp / "full" / "run.json")).at("fast_preview") == false);
 }

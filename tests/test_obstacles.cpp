@@ -175,7 +175,7 @@ TEST_CASE("bad obstacles are refused with file and field", "[obstacles]") {
         {"neither box nor sphere", with(scene, "/effects/obstacles/0", {{"cylinder", 1}}), first,
          "expected {\"box\""},
         {"both", with(scene, "/effects/obstacles/0/sphere", sphere["sphere"]), first,
-         "a box or a sphere, not both"},
+         "one of box, sphere or mesh, not several"},
         {"not an object", with(scene, "/effects/obstacles/0", 3), first, "expected an object"},
         {"box not an object", with(scene, "/effects/obstacles/0/box", 3), first + ".box",
          "expected an object"},
@@ -247,7 +247,7 @@ TEST_CASE("sphclip keys lists the obstacle keys", "[obstacles]") {
 
 TEST_CASE("an obstacle box is sampled in layers as deep as the kernel reaches", "[obstacles]") {
     const Real s = 0.01, h = 0.025; // 3 layers
-    const Obstacle<2> box{ObstacleShape::box, {{0.1, 0.2}, {0.22, 0.3}}, Vec<2>(0), 0};
+    const Obstacle<2> box{ObstacleShape::box, {{0.1, 0.2}, {0.22, 0.3}}, Vec<2>(0), 0, nullptr};
     const std::vector<Obstacle<2>> list{box};
     const auto samples = sample_obstacles<2>(list, s, h, 2e-4);
     // 12 x 10 sites, all but the 6 x 4 deeper than 3 layers.
@@ -261,11 +261,11 @@ TEST_CASE("an obstacle box is sampled in layers as deep as the kernel reaches", 
     }
     // 3D: a box too thin for 3 layers on each side is solid throughout.
     const std::vector<Obstacle<3>> cube{
-        {ObstacleShape::box, {{0, 0, 0}, {0.04, 0.05, 0.1}}, Vec<3>(0), 0}};
+        {ObstacleShape::box, {{0, 0, 0}, {0.04, 0.05, 0.1}}, Vec<3>(0), 0, nullptr}};
     CHECK(sample_obstacles<3>(cube, s, h, 1e-6).positions.size() == 4 * 5 * 10);
     // A side not a whole number of spacings: the box's own lattice, stretched.
     const std::vector<Obstacle<2>> odd{
-        {ObstacleShape::box, {{0, 0}, {0.0405, 0.02}}, Vec<2>(0), 0}};
+        {ObstacleShape::box, {{0, 0}, {0.0405, 0.02}}, Vec<2>(0), 0, nullptr}};
     const auto stretched = sample_obstacles<2>(odd, s, h, 1e-4);
     CHECK(stretched.positions.size() == 4 * 2);
     CHECK(stretched.volumes[0] == Approx(1e-4 * 1.0125));
@@ -278,8 +278,8 @@ TEST_CASE("an obstacle sphere is sampled in concentric layers inside its surface
     for (Real radius : {0.012, 0.05}) {
         INFO("radius " << radius);
         const std::vector<Obstacle<3>> ball{
-            {ObstacleShape::sphere, {}, Vec<3>(0.3, 0.2, 0.1), radius}};
-        const Obstacle<2> disc{ObstacleShape::sphere, {}, Vec<2>(0.3, 0.2), radius};
+            {ObstacleShape::sphere, {}, Vec<3>(0.3, 0.2, 0.1), radius, nullptr}};
+        const Obstacle<2> disc{ObstacleShape::sphere, {}, Vec<2>(0.3, 0.2), radius, nullptr};
         const auto samples_2d = sample_obstacles<2>(std::vector{disc}, s, h, s * s);
         const auto samples_3d = sample_obstacles<3>(ball, s, h, s * s * s);
         Real area = 0, volume = 0;
@@ -308,8 +308,8 @@ TEST_CASE("an obstacle sphere is sampled in concentric layers inside its surface
     }
     // A sample inside another obstacle is left out.
     const std::vector<Obstacle<2>> overlapping{
-        {ObstacleShape::box, {{0, 0}, {0.1, 0.1}}, Vec<2>(0), 0},
-        {ObstacleShape::sphere, {}, Vec<2>(0.1, 0.1), 0.03}};
+        {ObstacleShape::box, {{0, 0}, {0.1, 0.1}}, Vec<2>(0), 0, nullptr},
+        {ObstacleShape::sphere, {}, Vec<2>(0.1, 0.1), 0.03, nullptr}};
     const auto merged = sample_obstacles<2>(overlapping, s, h, s * s);
     for (const auto& x : merged.positions)
         CHECK(std::min(overlapping[0].signed_distance(x), overlapping[1].signed_distance(x)) >=
@@ -443,8 +443,9 @@ Real sphere_over_flat(Real radius, Real spacing, Real h, Real gap) {
             sum += samples.volumes[b] * W.W(glm::length(x - samples.positions[b]));
         return sum;
     };
-    const std::vector<Obstacle<D>> box{{ObstacleShape::box, {Vec<D>(0), Vec<D>(1)}, Vec<D>(0), 0}};
-    const std::vector<Obstacle<D>> sphere{{ObstacleShape::sphere, {}, centre, radius}};
+    const std::vector<Obstacle<D>> box{
+        {ObstacleShape::box, {Vec<D>(0), Vec<D>(1)}, Vec<D>(0), 0, nullptr}};
+    const std::vector<Obstacle<D>> sphere{{ObstacleShape::sphere, {}, centre, radius, nullptr}};
     const auto flat = sample_obstacles<D>(box, spacing, h, lattice_volume);
     const auto round = sample_obstacles<D>(sphere, spacing, h, lattice_volume);
     Vec<D> above = centre;

@@ -299,18 +299,29 @@ TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][
         CHECK(sim.particle_steps() == 3 * sim.state().size());
         return stage_names(sim.stage_times());
     };
-    // The seed: reflecting walls, its pair force, gravity.
+    // The seed: reflecting walls, its pair force (pressure, then its viscous
+    // term as the viscosity effect), gravity.
     CHECK(stages_of({}) == Names{"boundary", "density", "gravity", "integration",
-                                 "neighbour search", "pressure and viscosity", "time step",
+                                 "neighbour search", "pressure", "time step", "viscosity",
                                  "watchdog"});
-    // No effects: no gravity stage. A fixed step: no time-step rule.
-    CHECK(stages_of({{"effects", "{}"}, {"solver.dt", "1e-4"}}) ==
-          Names{"boundary", "density", "integration", "neighbour search", "pressure and viscosity",
+    // No effects and no viscosity: no gravity or viscosity stage. A fixed
+    // step: no time-step rule.
+    CHECK(stages_of({{"effects", "{}"}, {"solver.dt", "1e-4"}, {"material.viscosity", "0"}}) ==
+          Names{"boundary", "density", "integration", "neighbour search", "pressure",
                 "watchdog"});
-    // wcsph: wall particles, Tait pressure, viscosity.
+    // wcsph: wall particles, Tait pressure, Morris viscosity and the
+    // artificial one it has by default.
     CHECK(stages_of({{"solver.name", "wcsph"}}) ==
-          Names{"boundary", "density", "gravity", "integration", "neighbour search", "pressure",
-                "time step", "viscosity", "watchdog"});
+          Names{"artificial_viscosity", "boundary", "density", "gravity", "integration",
+                "neighbour search", "pressure", "time step", "viscosity", "watchdog"});
+    // Every viscosity effect named, with an inviscid material.
+    CHECK(stages_of({{"solver.name", "wcsph"},
+                     {"material.viscosity", "0"},
+                     {"effects", R"({"viscosity": {"mu": 0.5, "model": "seed"},
+                                     "artificial_viscosity": {"alpha": 0},
+                                     "xsph": {"epsilon": 0.3}})"}}) ==
+          Names{"boundary", "density", "integration", "neighbour search", "pressure", "time step",
+                "viscosity", "watchdog", "xsph"});
     // dfsph without viscosity: its two solves, no viscosity stage.
     CHECK(stages_of({{"solver.name", "dfsph"}, {"material.viscosity", "0"}}) ==
           Names{"boundary", "density", "divergence solve", "gravity", "integration",

@@ -3,6 +3,7 @@
 // csv_table.*), then the command end to end on coarse versions of the cases.
 
 #include "analysis/csv_table.hpp"
+#include "analysis/gravity_current.hpp"
 #include "analysis/hydrostatic_profile.hpp"
 #include "analysis/surge_front.hpp"
 #include "support/run_sphclip.hpp"
@@ -187,6 +188,39 @@ TEST_CASE("validate runs coarse cases, scores them and writes tables and plots",
     CHECK(sph::test::is_png(out / "dam_break_2d" / "surge_front.png"));
     CHECK(sph::test::is_png(out / "hydrostatic_2d" / "pressure_depth.png"));
     CHECK(fs::exists(out / "hydrostatic_2d" / "metrics.json"));
+}
+
+TEST_CASE("a spreading current's half width and Huppert's front", "[validate]") {
+    const double s = 0.01;
+    auto frame = lattice_2d(6, 3, s, 1000, [](double) { return 0.0; });
+    CHECK(sph::spreading_half_width(frame, s) == Approx(0.03)); // the block's own
+    add_particle(frame, 0.5, 0.005);                           // spray: ignored
+    CHECK(sph::spreading_half_width(frame, s) == Approx(0.03));
+    add_particle(frame, -0.01, 0.005); // fluid touching the left edge
+    CHECK(sph::spreading_half_width(frame, s) == Approx(0.0375));
+    // x_N = 1.411 (g A^3 t / 3 nu)^(1/5); grows as t^(1/5).
+    CHECK(sph::huppert_front(9.81, 0.003, 10.0 / 1420, 1.0) == Approx(0.14763).epsilon(1e-4));
+    CHECK(sph::huppert_front(9.81, 0.003, 10.0 / 1420, 32.0) ==
+          Approx(2 * sph::huppert_front(9.81, 0.003, 10.0 / 1420, 1.0)));
+}
+
+TEST_CASE("validate scores a viscous spread against Huppert (1982)", "[validate][cli]") {
+    TempFolder tmp;
+    const fs::path out = tmp / "v";
+    const auto result = run_sphclip(tmp,
+                                    {"validate", "honey_spread_2d", "--out", out.string(), "--set",
+                                     "fluid.spacing=0.005", "--set", "duration=1.2"},
+                                    SPHCLIP_SOURCE_DIR);
+    INFO(result.output);
+    REQUIRE(result.exit_code == 0);
+    CHECK_THAT(result.output, Catch::Contains("front_err_mean=") && Catch::Contains("PASS"));
+    const auto summary = read_text_csv(out / "summary.csv");
+    REQUIRE(summary.rows.size() == 1);
+    CHECK(std::stod(summary.at(0, "front_error_mean_pct")) < 5);
+    CHECK(summary.at(0, "mean_abs_dZ").empty());
+    const auto front = sph::read_csv_table(out / "honey_spread_2d" / "spreading_front.csv");
+    CHECK(front.rows() == 12); // frames 1..12 at 10 fps
+    CHECK(sph::test::is_png(out / "honey_spread_2d" / "spreading_front.png"));
 }
 
 TEST_CASE("validate: an unknown case exits 2 listing the cases", "[validate][cli]") {

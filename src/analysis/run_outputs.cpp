@@ -112,6 +112,9 @@ SceneFacts scene_facts(const json& scene) {
             g2 += g * g;
         facts.gravity = std::sqrt(g2);
     }
+    const json::json_pointer mu("/effects/viscosity/mu");
+    if (scene.contains(mu) && scene.at(mu).is_number())
+        facts.viscosity = scene.at(mu).get<double>();
     facts.domain_min = vector_at(scene, json::json_pointer("/domain/min"));
     facts.domain_max = vector_at(scene, json::json_pointer("/domain/max"));
     facts.block_min = vector_at(scene, json::json_pointer("/fluid/blocks/0/min"));

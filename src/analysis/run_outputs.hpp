@@ -37,6 +37,7 @@ struct SceneFacts {
     double spacing = 0;      // m
     double rest_density = 0; // kg/m^3
     double gravity = 0;      // |g|, m/s^2; 0 without the gravity effect
+    double viscosity = 0;    // mu of the viscosity effect, Pa.s; 0 without it
     std::vector<double> domain_min, domain_max;
     std::vector<double> block_min, block_max; // the first fluid block
 };

@@ -69,6 +69,8 @@ int main(int argc, char** argv) {
     run_cmd->add_flag("--no-png", no_png, "Write no PNG frames");
     run_cmd->add_flag("--no-mp4", no_mp4, "Write no MP4 video");
     run_cmd->add_flag("--quiet", run.quiet, "No progress line or summary");
+    run_cmd->add_flag("--fast-preview", run.fast_preview,
+                      "Half-size frames and the fastest x264 preset (ultrafast)");
     run_cmd
         ->add_option("--backend", run.backend,
                      "Headless GL context: auto (EGL, then OSMesa), egl or osmesa "

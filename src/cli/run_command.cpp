@@ -11,15 +11,19 @@
 #include "render/render_sink.hpp"
 #include "sph/surface.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <exception>
 #include <fmt/format.h>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <omp.h>
+#include <optional>
 #include <unistd.h>
+#include <vector>
 
 namespace sph {
 
@@ -92,6 +96,20 @@ struct RunRecord {
     }
 };
 
+// One x264 thread, by measurement (tests/bench/results/encode.csv, README
+// "What encoding costs"): on 2 busy cores it encodes fastest, it leaves the
+// other core to the simulation while it overlaps it, and the clip's bytes do
+// not depend on the machine's core count, as libx264's choice would.
+constexpr int encoder_threads = 1;
+
+// Half the size, rounded to even (yuv420p needs even sizes, so the video is
+// not padded), and libx264's fastest preset. run.json's scene records both.
+void make_fast_preview(Scene& scene) {
+    for (int& side : scene.render.size)
+        side = 2 * std::max(1, (side + 2) / 4);
+    scene.render.video_preset = "ultrafast";
+}
+
 template <int D>
 int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& options,
              std::unique_ptr<GlContext> gl_context) {
@@ -107,7 +125,8 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             std::move(gl_context), make_render_settings(scene),
             options.png ? folder / "frames" : fs::path(),
             options.mp4 ? folder / "clip.mp4" : fs::path(), scene.fps,
-            Mp4Options{scene.render.video_quality, scene.render.video_preset, 0});
+            Mp4Options{scene.render.video_quality, scene.render.video_preset, encoder_threads},
+            EncodeThread::worker);
         render = render_sink.get();
     }
 
@@ -140,6 +159,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
         {"threads", omp_get_max_threads()},
         {"solver", std::string(sim.solver().name())},
         {"neighbour_search", std::string(sim.search().name())},
+        {"fast_preview", options.fast_preview},
         {"outputs",
          {{"stats", "stats.csv"},
           {"exports", options.exports},
@@ -158,6 +178,9 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
                    "dt = {:.4g} s, {} frames of {:.4g} s -> {}\n",
                    scene.name, D, scene.solver.name, sim.state().size(), derived.h, derived.mass,
                    derived.dt, frames, scene.duration, folder.string());
+        if (options.fast_preview)
+            fmt::print("sphclip: fast preview: half-size frames ({}x{}), x264 preset {}\n",
+                       scene.render.size[0], scene.render.size[1], scene.render.video_preset);
         if (render)
             fmt::print("sphclip: rendering {}x{} with {} ({}, OpenGL {})\n", scene.render.size[0],
                        scene.render.size[1], render->gl_info().backend, render->gl_info().renderer,
@@ -170,9 +193,20 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
     auto wall = [&start] {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
+    // Every sink is finished, even after one fails (so the video is
+    // finalised whatever happens); the first error is rethrown.
     auto finish_sinks = [&sinks] {
-        for (auto& sink : sinks)
-            sink->finish();
+        std::exception_ptr error;
+        for (auto& sink : sinks) {
+            try {
+                sink->finish();
+            } catch (...) {
+                if (!error)
+                    error = std::current_exception();
+            }
+        }
+        if (error)
+            std::rethrow_exception(error);
     };
 
     Snapshot snapshot;
@@ -182,37 +216,53 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
     std::vector<double> simulate_seconds;
     std::vector<StageRow> stage_report;
     // Per frame: where the time went (run.json "timings").
+    // The MP4 encoder runs on a worker thread: its busy time (`encode`)
+    // overlaps the main thread's stages, and only the main thread's wait for
+    // it (`encode wait`) adds to the wall time.
     auto record_timings = [&] {
+        const std::vector<FrameCost> costs = render ? render->costs() : std::vector<FrameCost>{};
         json frames = json::array();
-        double total[4] = {0, 0, 0, 0};
+        double simulate_total = 0;
+        FrameCost total;
         for (std::size_t k = 0; k < simulate_seconds.size(); ++k) {
-            const FrameCost cost =
-                render && k < render->costs().size() ? render->costs()[k] : FrameCost{};
-            const double row[4] = {simulate_seconds[k], cost.render_s, cost.readback_s,
-                                   cost.encode_s};
-            for (int c = 0; c < 4; ++c)
-                total[c] += row[c];
+            const FrameCost cost = k < costs.size() ? costs[k] : FrameCost{};
+            simulate_total += simulate_seconds[k];
+            total.render_s += cost.render_s;
+            total.readback_s += cost.readback_s;
+            total.encode_s += cost.encode_s;
+            total.encode_wait_s += cost.encode_wait_s;
             frames.push_back({{"frame", k},
-                              {"simulate_s", row[0]},
-                              {"render_s", row[1]},
-                              {"readback_s", row[2]},
-                              {"encode_s", row[3]}});
+                              {"simulate_s", simulate_seconds[k]},
+                              {"render_s", cost.render_s},
+                              {"readback_s", cost.readback_s},
+                              {"encode_s", cost.encode_s},
+                              {"encode_wait_s", cost.encode_wait_s}});
         }
-        StageTimes after;
+        // Stats, exports, handing frames to the writers: what the sinks took
+        // beyond drawing, reading back and waiting for the encoder.
+        const double output =
+            std::max(0.0, sinks_s - total.render_s - total.readback_s - total.encode_wait_s);
+        // The frames libx264 held back are encoded at the end, while the run waits.
+        if (const auto times = render ? render->encode_times() : std::nullopt) {
+            total.encode_s += times->flush_seconds;
+            total.encode_wait_s += times->finish_wait_seconds;
+        }
+        StageTimes after, overlapped;
         after.add("frame statistics", frame_fields_s);
-        after.add("render", total[1]);
-        after.add("readback", total[2]);
-        after.add("encode", total[3]);
-        // Stats, exports, handing PNGs to their writer: what the sinks took
-        // beyond drawing and encoding.
-        after.add("output", std::max(0.0, sinks_s - total[1] - total[2] - total[3]));
-        stage_report = stage_rows(sim.stage_times(), after, wall(), sim.particle_steps());
+        after.add("render", total.render_s);
+        after.add("readback", total.readback_s);
+        after.add("encode wait", total.encode_wait_s);
+        after.add("output", output);
+        overlapped.add("encode", total.encode_s);
+        stage_report =
+            stage_rows(sim.stage_times(), after, wall(), sim.particle_steps(), overlapped);
         record.document["stages"] = stages_json(stage_report);
         record.document["timings"] = {{"total",
-                                       {{"simulate_s", total[0]},
-                                        {"render_s", total[1]},
-                                        {"readback_s", total[2]},
-                                        {"encode_s", total[3]}}},
+                                       {{"simulate_s", simulate_total},
+                                        {"render_s", total.render_s},
+                                        {"readback_s", total.readback_s},
+                                        {"encode_s", total.encode_s},
+                                        {"encode_wait_s", total.encode_wait_s}}},
                                       {"frames", frames}};
     };
     try {
@@ -258,9 +308,20 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             ++written;
             progress.update(k, frames, sim.time(), sim.steps(), wall());
         }
+        progress.done();
+        // Inside the try: an encoder error may surface only here.
+        finish_sinks();
     } catch (const UnstableError& e) {
         progress.done();
-        finish_sinks();
+        try {
+            finish_sinks();
+        } catch (const std::exception& sink_error) {
+            // A sink failed before the blow-up: a failed run, as on the
+            // sequential path, where the failure came first.
+            record_timings();
+            record.save("failed", written, sim.steps(), sim.time(), wall(), sink_error.what());
+            throw;
+        }
         record_timings();
         record.save("unstable", written, sim.steps(), sim.time(), wall(), e.what());
         fmt::print(stderr, "sphclip: error: {}\nsphclip: the {} frames before it are kept in {}.\n",
@@ -278,8 +339,6 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
         record.save("failed", written, sim.steps(), sim.time(), wall(), e.what());
         throw;
     }
-    progress.done();
-    finish_sinks();
     const double seconds = wall();
     record_timings();
     record.save("completed", written, sim.steps(), sim.time(), seconds);
@@ -294,8 +353,10 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
 } // namespace
 
 int run_command(const RunOptions& options) {
-    const Scene scene = options.scene ? load_scene(*options.scene, options.overrides)
-                                      : default_scene(options.overrides);
+    Scene scene = options.scene ? load_scene(*options.scene, options.overrides)
+                                : default_scene(options.overrides);
+    if (options.fast_preview)
+        make_fast_preview(scene);
     const fs::path folder = options.out ? *options.out : output_folder(scene);
     // The GL context before any output: when none can be made, nothing is written.
     std::unique_ptr<GlContext> gl_context;

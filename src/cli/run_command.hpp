@@ -19,6 +19,8 @@ struct RunOptions {
     bool png = true;
     bool mp4 = true;
     bool quiet = false;
+    // Half the image size (rounded to even) and the fastest x264 preset.
+    bool fast_preview = false;
     std::string backend; // --backend; empty: the scene's render.backend
     std::string command_line; // recorded in run.json
 };

@@ -5,35 +5,46 @@
 namespace sph {
 
 std::vector<StageRow> stage_rows(const StageTimes& simulation, const StageTimes& after,
-                                 double wall_seconds, std::uint64_t particle_steps) {
+                                 double wall_seconds, std::uint64_t particle_steps,
+                                 const StageTimes& overlapped) {
     std::vector<StageRow> rows;
-    for (const StageTimes* times : {&simulation, &after})
+    for (const StageTimes* times : {&simulation, &after, &overlapped})
         for (const auto& e : times->entries()) {
             if (e.seconds <= 0)
                 continue;
             rows.push_back({std::string(e.name), e.seconds,
                             wall_seconds > 0 ? e.seconds / wall_seconds : 0,
-                            particle_steps ? e.seconds * 1e9 / double(particle_steps) : 0});
+                            particle_steps ? e.seconds * 1e9 / double(particle_steps) : 0,
+                            times == &overlapped});
         }
     return rows;
 }
 
 nlohmann::json stages_json(const std::vector<StageRow>& rows) {
     nlohmann::json list = nlohmann::json::array();
-    for (const auto& r : rows)
+    for (const auto& r : rows) {
         list.push_back({{"name", r.name},
                         {"seconds", r.seconds},
                         {"share", r.share},
                         {"ns_per_particle_step", r.ns_per_particle_step}});
+        if (r.overlapped)
+            list.back()["overlapped"] = true;
+    }
     return list;
 }
 
 std::string stages_table(const std::vector<StageRow>& rows) {
     std::string out = fmt::format("{:<24} {:>10} {:>7} {:>14}\n", "stage", "seconds", "share",
                                   "ns/particle-step");
-    for (const auto& r : rows)
-        out += fmt::format("{:<24} {:>10.3f} {:>6.1f}% {:>14.1f}\n", r.name, r.seconds,
-                           100 * r.share, r.ns_per_particle_step);
+    bool any_overlapped = false;
+    for (const auto& r : rows) {
+        out += fmt::format("{:<24} {:>10.3f} {:>6.1f}% {:>14.1f}\n",
+                           r.overlapped ? r.name + " *" : r.name, r.seconds, 100 * r.share,
+                           r.ns_per_particle_step);
+        any_overlapped = any_overlapped || r.overlapped;
+    }
+    if (any_overlapped)
+        out += "* on a worker thread, at the same time as the stages above\n";
     return out;
 }
 

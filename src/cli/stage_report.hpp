@@ -17,12 +17,17 @@ struct StageRow {
     double seconds = 0;
     double share = 0;                // of the run's wall time
     double ns_per_particle_step = 0; // seconds / particle-steps
+    // Ran on a worker thread alongside the other stages (the MP4 encoder):
+    // its share is not part of theirs, and all shares may add up to over 1.
+    bool overlapped = false;
 };
 
-// The simulation's stages, then `after` (render, encode, ...: stages outside
-// the step), leaving out stages that took no time at all.
+// The simulation's stages, then `after` (render, readback, ...: stages
+// outside the step), then `overlapped` (worker threads' busy time), leaving
+// out stages that took no time at all.
 std::vector<StageRow> stage_rows(const StageTimes& simulation, const StageTimes& after,
-                                 double wall_seconds, std::uint64_t particle_steps);
+                                 double wall_seconds, std::uint64_t particle_steps,
+                                 const StageTimes& overlapped = {});
 
 nlohmann::json stages_json(const std::vector<StageRow>& rows);
 // Aligned text table, one stage a line, with a header.

@@ -23,7 +23,8 @@ namespace {
 // summary.csv: one row per case; a figure that does not apply is empty.
 const char* summary_header = "case,solver,status,particles,steps,wall_s,mean_abs_dZ,max_abs_dZ,"
                              "pressure_error_rms_pct,pressure_error_max_pct,"
-                             "density_error_avg_pct,speed_max_m_s,verdict";
+                             "density_error_avg_pct,speed_max_m_s,front_error_mean_pct,"
+                             "front_error_max_pct,verdict";
 
 std::string cell(const nlohmann::json& metrics, const char* key) {
     return metrics.contains(key) && metrics[key].is_number()
@@ -189,11 +190,12 @@ int validate_command(const ValidateOptions& options) {
                       result.exit_code != exit_interrupted;
         }
         summary += fmt::format(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.name, solver, status, run.particles,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.name, solver, status, run.particles,
             run.steps, result.started ? fmt::format("{:.4g}", wall) : "",
             cell(metrics, "mean_abs_dZ"), cell(metrics, "max_abs_dZ"),
             cell(metrics, "pressure_error_rms_pct"), cell(metrics, "pressure_error_max_pct"),
-            cell(metrics, "density_error_avg_pct"), cell(metrics, "speed_max_m_s"), verdict);
+            cell(metrics, "density_error_avg_pct"), cell(metrics, "speed_max_m_s"),
+            cell(metrics, "front_error_mean_pct"), cell(metrics, "front_error_max_pct"), verdict);
     }
     write_file_atomically(out / "summary.csv", summary);
     fmt::print("validate: summary in {}; comparison tables and plots in {}/CASE/\n",

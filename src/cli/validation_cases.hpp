@@ -14,6 +14,7 @@ namespace sph {
 enum class CaseKind {
     hydrostatic, // a settled tank against p = rho0 |g| depth
     dam_break,   // the surge front against Martin & Moyce (1952)
+    spreading,   // a viscous column's front against Huppert's (1982) gravity current
 };
 
 struct ValidationCase {
@@ -23,7 +24,7 @@ struct ValidationCase {
     std::vector<std::string> sets;
 };
 
-// hydrostatic_2d, hydrostatic_3d, dam_break_2d, dam_break_3d.
+// hydrostatic_2d, hydrostatic_3d, dam_break_2d, dam_break_3d, honey_spread_2d.
 const std::vector<ValidationCase>& validation_cases();
 
 // Null for a name that is no case.
@@ -39,7 +40,8 @@ std::string reference_file(const ValidationCase& c);
 std::string case_error_name(const ValidationCase& c);
 
 struct CaseScore {
-    double error = 0;       // the headline figure: mean |dZ|, or the pressure RMS error in %
+    double error = 0;       // the headline figure: mean |dZ|, the pressure RMS error in %, or
+                            // the front's mean error in %
     std::string error_name; // how study.md and plots name it
     std::string figures;    // "mean|dZ|=0.083  max|dZ|=0.15", for the summary line
     nlohmann::json metrics; // every figure by name (metrics.json)

@@ -179,6 +179,9 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, int width, int height, d
     check(av_opt_set(codec.priv_data, "preset", options.preset.c_str(), 0), path,
           "setting the x264 preset");
     check(av_opt_set_double(codec.priv_data, "crf", options.crf, 0), path, "setting the x264 crf");
+    if (!options.mb_tree)
+        check(av_opt_set(codec.priv_data, "x264-params", "mbtree=0", 0), path,
+              "turning off the x264 macroblock tree");
     check(avcodec_open2(&codec, h264, nullptr), path,
           fmt::format("opening libx264 (preset '{}', crf {})", options.preset, options.crf));
 

@@ -31,6 +31,13 @@ struct Mp4Options {
     int crf = 20;                    // constant quality (x264 CRF), 0-51, lower is better
     std::string preset = "veryfast"; // x264 preset, "ultrafast" to "placebo"
     int threads = 0;                 // encoder threads, 0 = libx264's choice
+    // libx264's macroblock tree (part of its rate control). Off by default:
+    // Debian's libx264 0.164 then reads uninitialised memory on some inputs
+    // (small frames, e.g. 320x180), so the same frames could encode to
+    // different bytes from one encoder to the next in one process; off, the
+    // bytes depend only on the frames and these settings (README, "What
+    // encoding costs", measures the price).
+    bool mb_tree = false;
 };
 
 class Mp4Writer {

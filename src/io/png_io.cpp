@@ -158,6 +158,12 @@ PngWriterThread::~PngWriterThread() {
 }
 
 void PngWriterThread::submit(fs::path path, Image image) {
+    submit(std::move(path), std::make_shared<const Image>(std::move(image)));
+}
+
+void PngWriterThread::submit(fs::path path, std::shared_ptr<const Image> image) {
+    if (!image)
+        throw std::invalid_argument("PngWriterThread::submit without an image");
     std::unique_lock lock(mutex_);
     if (finished_)
         throw std::logic_error("PngWriterThread::submit after finish");
@@ -200,7 +206,7 @@ void PngWriterThread::work() {
         taken_.notify_all();
         // Encoding and writing happen unlocked, so submit() can queue the next image meanwhile.
         try {
-            write_png(job.path, job.image);
+            write_png(job.path, *job.image);
         } catch (...) {
             std::lock_guard lock(mutex_);
             error_ = std::current_exception();

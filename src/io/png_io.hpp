@@ -8,6 +8,7 @@
 #include <deque>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -51,6 +52,8 @@ class PngWriterThread {
     PngWriterThread& operator=(const PngWriterThread&) = delete;
 
     void submit(std::filesystem::path path, Image image);
+    // The image is shared, not copied: the MP4 encoder may hold the same one.
+    void submit(std::filesystem::path path, std::shared_ptr<const Image> image);
     // Waits until every submitted image is written and stops the thread.
     // Later calls do nothing.
     void finish();
@@ -58,7 +61,7 @@ class PngWriterThread {
   private:
     struct Job {
         std::filesystem::path path;
-        Image image;
+        std::shared_ptr<const Image> image;
     };
     void work();
 

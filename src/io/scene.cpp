@@ -1,6 +1,7 @@
 #include "io/scene.hpp"
 
 #include "io/input_error.hpp"
+#include "io/obj_mesh.hpp"
 #include "io/scene_paths.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
@@ -509,14 +510,16 @@ double physical_memory_bytes() {
     return pages > 0 && page_size > 0 ? double(pages) * double(page_size) : 0;
 }
 
-// effects.obstacles: each element a box or a sphere. With no list the keys
-// are still read, for the documentation. Checks against the domain and the
-// spacing come with the other checks of several fields.
-void read_obstacles(FieldReader& r, int dim, std::vector<SceneObstacle>& obstacles) {
+// effects.obstacles: each element a box, a sphere or (3D) a mesh. With no
+// list the keys are still read, for the documentation. A mesh's OBJ file is
+// read here, relative to the scene file's folder; checks against the domain
+// and the spacing come with the other checks of several fields.
+void read_obstacles(FieldReader& r, int dim, const std::string& file,
+                    std::vector<SceneObstacle>& obstacles) {
     const std::size_t count =
         r.list("effects.obstacles", "none",
-               "Static obstacles the fluid flows around (wcsph, dfsph): each {\"box\": {...}} or "
-               "{\"sphere\": {...}}, made of boundary particles.");
+               "Static obstacles the fluid flows around (wcsph, dfsph): each {\"box\": {...}}, "
+               "{\"sphere\": {...}} or (3D) {\"mesh\": {...}}, made of boundary particles.");
     for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i) {
         const std::string p = fmt::format("effects.obstacles[{}]", i);
         const auto min = r.optional_vector(p + ".box.min", dim, "m", "required",
@@ -527,31 +530,68 @@ void read_obstacles(FieldReader& r, int dim, std::vector<SceneObstacle>& obstacl
                                               "Centre of a sphere obstacle (a circle in 2D).");
         const auto radius = r.optional_number(p + ".sphere.radius", "m", "required",
                                               "Radius of a sphere obstacle.", Bound::positive);
+        const json* box = r.find(p + ".box");
+        const json* sphere = r.find(p + ".sphere");
+        const json* mesh = r.find(p + ".mesh");
+        if (i < count && mesh && dim == 2)
+            r.fail(p + ".mesh", "a mesh obstacle is a 3D solid; a 2D scene has boxes and spheres "
+                                "(circles) only");
+        const auto mesh_file = r.optional_text(
+            p + ".mesh.file", "required",
+            "Wavefront OBJ file of a closed triangle mesh obstacle (3D only), relative to the "
+            "scene file's folder (not absolute, no \"..\").");
+        const double mesh_scale =
+            r.number(p + ".mesh.scale", 1, "m per file unit",
+                     "Scale of a mesh obstacle: a vertex v of the file is at scale v + offset.",
+                     Bound::positive);
+        // Always 3 numbers: a mesh is 3D (a 2D scene was refused above).
+        const Vec3 mesh_offset = r.vector(p + ".mesh.offset", {0, 0, 0}, 3, "m",
+                                          "Offset of a mesh obstacle, added after scaling.");
         if (i >= count)
             break;
         SceneObstacle o;
-        const json* box = r.find(p + ".box");
-        const json* sphere = r.find(p + ".sphere");
-        if (!box == !sphere)
-            r.fail(p, box ? "an obstacle is a box or a sphere, not both"
-                          : "expected {\"box\": {\"min\": [...], \"max\": [...]}} or "
-                            "{\"sphere\": {\"centre\": [...], \"radius\": r}}");
-        const std::string shape = box ? p + ".box" : p + ".sphere";
-        if (!(box ? box : sphere)->is_object())
-            r.fail(shape, "expected an object, got " + describe(box ? *box : *sphere));
+        const int shapes = (box != nullptr) + (sphere != nullptr) + (mesh != nullptr);
+        if (shapes != 1)
+            r.fail(p, shapes > 1 ? "an obstacle is one of box, sphere or mesh, not several"
+                                 : "expected {\"box\": {\"min\": [...], \"max\": [...]}}, "
+                                   "{\"sphere\": {\"centre\": [...], \"radius\": r}} or (3D) "
+                                   "{\"mesh\": {\"file\": \"name.obj\"}}");
+        const json* given = box ? box : sphere ? sphere : mesh;
+        const std::string shape = p + (box ? ".box" : sphere ? ".sphere" : ".mesh");
+        if (!given->is_object())
+            r.fail(shape, "expected an object, got " + describe(*given));
         if (box) {
             if (!min || !max)
                 r.fail(shape + (min ? ".max" : ".min"), "a box obstacle needs min and max");
             o.shape = ObstacleShape::box;
             o.min = *min;
             o.max = *max;
-        } else {
+        } else if (sphere) {
             if (!centre || !radius)
                 r.fail(shape + (centre ? ".radius" : ".centre"),
                        "a sphere obstacle needs centre and radius");
             o.shape = ObstacleShape::sphere;
             o.centre = *centre;
             o.radius = *radius;
+        } else {
+            if (!mesh_file)
+                r.fail(shape + ".file", "a mesh obstacle needs the OBJ file's name");
+            o.shape = ObstacleShape::mesh;
+            o.mesh_file = *mesh_file;
+            o.mesh_scale = mesh_scale;
+            o.mesh_offset = mesh_offset;
+            // Relative to the scene's own folder, and inside it, as a scene
+            // from elsewhere must not read files outside it.
+            const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+            try {
+                const std::filesystem::path path = resolve_inside(
+                    folder.empty() ? "." : folder, *mesh_file, file, shape + ".file");
+                o.mesh = read_obj_mesh(path, mesh_scale,
+                                       {mesh_offset[0], mesh_offset[1], mesh_offset[2]}, file,
+                                       shape + ".file");
+            } catch (const InputError& e) {
+                r.fail(e.field, e.problem);
+            }
         }
         obstacles.push_back(o);
     }
@@ -585,6 +625,60 @@ void read_emitters(FieldReader& r, int dim, std::vector<SceneEmitter>& emitters)
         if (!(e.start < e.end))
             r.fail(p + ".end", "must be after start");
         emitters.push_back(e);
+    }
+}
+
+// effects.paddles: each a box with a prescribed motion, sine (a piston
+// wavemaker) or linear (a piston pushing at constant speed). Checks against
+// the domain and the spacing come with the other checks of several fields.
+void read_paddles(FieldReader& r, int dim, std::vector<ScenePaddle>& paddles) {
+    const std::size_t count = r.list(
+        "effects.paddles", "none",
+        "Boxes that move with a prescribed motion (wcsph, dfsph), a piston wavemaker: made of "
+        "boundary particles that push the fluid and drag it along (no slip).");
+    for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i) {
+        const std::string p = fmt::format("effects.paddles[{}]", i);
+        const ScenePaddle fallback;
+        ScenePaddle o;
+        o.min = r.vector(p + ".min", fallback.min, dim, "m",
+                         "Lower corner of the paddle's box at rest (before start).");
+        o.max = r.vector(p + ".max", fallback.max, dim, "m",
+                         "Upper corner of the paddle's box at rest.");
+        o.motion = r.choice(p + ".motion", fallback.motion, {"sine", "linear"},
+                            "How the paddle moves from start on: sine, displacement amplitude "
+                            "sin(2 pi (t - start) / period); linear, velocity (t - start) until "
+                            "end, then it stays.");
+        o.amplitude = r.vector(p + ".amplitude", fallback.amplitude, dim, "m",
+                               "Sine: the largest displacement (half the stroke), as a vector "
+                               "along the motion.");
+        o.period =
+            r.number(p + ".period", fallback.period, "s", "Sine: the period.", Bound::positive);
+        o.velocity = r.vector(p + ".velocity", fallback.velocity, dim, "m/s",
+                              "Linear: the velocity (not zero).");
+        o.start = r.number(p + ".start", fallback.start, "s", "When the paddle starts moving.",
+                           Bound::non_negative);
+        o.end = r.number(p + ".end", fallback.end, "s", "Linear: when the paddle stops.",
+                         Bound::non_negative);
+        if (i >= count)
+            break;
+        // Keys of the other motion would be silently ignored: refused instead.
+        const bool sine = o.motion == "sine";
+        for (const char* key : {".velocity", ".end"})
+            if (sine && r.present(p + key))
+                r.fail(p + key, "is for motion \"linear\"; a sine paddle has amplitude and period");
+        for (const char* key : {".amplitude", ".period"})
+            if (!sine && r.present(p + key))
+                r.fail(p + key, "is for motion \"sine\"; a linear paddle has velocity and end");
+        if (!sine) {
+            double speed = 0;
+            for (int a = 0; a < dim; ++a)
+                speed += o.velocity[a] * o.velocity[a];
+            if (!(speed > 0))
+                r.fail(p + ".velocity", "a linear paddle needs a velocity that is not zero");
+            if (!(o.start < o.end))
+                r.fail(p + ".end", "must be after start");
+        }
+        paddles.push_back(o);
     }
 }
 
@@ -622,6 +716,29 @@ double check_obstacle(const FieldReader& r, const Scene& s, std::size_t i, doubl
         }
         return sites - interior;
     }
+    if (o.shape == ObstacleShape::mesh) {
+        // The mesh's bounding box, as a box obstacle's own.
+        const Box<3>& bounds = o.mesh->bounds();
+        double sites = 1;
+        for (int a = 0; a < dim; ++a) {
+            if (outside(bounds.min[a], bounds.max[a], a))
+                r.fail(p + ".mesh",
+                       fmt::format("the mesh (scaled and moved) spans [{}, {}] on axis {}, outside "
+                                   "the domain [{}, {}]",
+                                   bounds.min[a], bounds.max[a], "xyz"[a], s.domain.min[a],
+                                   s.domain.max[a]));
+            const double along = (bounds.max[a] - bounds.min[a]) / spacing;
+            if (!(along >= 1 - 1e-9))
+                r.fail(p + ".mesh",
+                       fmt::format("the mesh (scaled) is thinner than one spacing ({} m) on axis "
+                                   "{}: too thin a solid for the fluid to see",
+                                   spacing, "xyz"[a]));
+            sites *= std::max(1.0, std::round(along));
+        }
+        // The shell is about its area times its depth; twice that allows for
+        // curvature and the lattice, and no more than its bounding box holds.
+        return std::min(sites, 2 * o.mesh->area() / (spacing * spacing) * layers + 1);
+    }
     for (int a = 0; a < dim; ++a)
         if (outside(o.centre[a], o.centre[a], a))
             r.fail(p + ".sphere.centre",
@@ -642,6 +759,97 @@ double check_obstacle(const FieldReader& r, const Scene& s, std::size_t i, doubl
     const double around = dim == 2 ? 2 * M_PI * o.radius / spacing
                                    : 4 * M_PI * o.radius * o.radius / (spacing * spacing);
     return layers * (around + 1);
+}
+
+// Checks paddle i: its box at rest as an obstacle's box, and the room its
+// motion sweeps over the clip inside the domain. Returns the boundary
+// particles of its shell.
+double check_paddle(const FieldReader& r, const Scene& s, std::size_t i, double layers) {
+    const ScenePaddle& o = s.effects.paddles[i];
+    const int dim = s.dimension;
+    const std::string p = fmt::format("effects.paddles[{}]", i);
+    const bool sine = o.motion == "sine";
+    // How far the motion takes the box from rest over the clip, per axis.
+    const double moving = std::max(0.0, std::min(o.end, s.duration) - o.start);
+    double sites = 1, interior = 1;
+    for (int a = 0; a < dim; ++a) {
+        if (!(o.min[a] < o.max[a]))
+            r.fail(p, fmt::format("min must be below max on every axis (axis {}: {} >= {})",
+                                  "xyz"[a], o.min[a], o.max[a]));
+        const double tolerance = 1e-9 * (s.domain.max[a] - s.domain.min[a]);
+        auto outside = [&](double lo, double hi) {
+            return lo < s.domain.min[a] - tolerance || hi > s.domain.max[a] + tolerance;
+        };
+        if (outside(o.min[a], o.max[a]))
+            r.fail(p, fmt::format("the paddle's box [{}, {}] on axis {} is outside the domain "
+                                  "[{}, {}]",
+                                  o.min[a], o.max[a], "xyz"[a], s.domain.min[a], s.domain.max[a]));
+        const double travel = sine ? 0 : o.velocity[a] * moving;
+        const double back = sine ? std::abs(o.amplitude[a]) : std::max(0.0, -travel);
+        const double forth = sine ? std::abs(o.amplitude[a]) : std::max(0.0, travel);
+        if (outside(o.min[a] - back, o.max[a] + forth))
+            r.fail(p + (sine ? ".amplitude" : ".velocity"),
+                   fmt::format("moves the paddle outside the domain on axis {}: over the clip "
+                               "it spans [{:.6g}, {:.6g}], against [{}, {}]",
+                               "xyz"[a], o.min[a] - back, o.max[a] + forth, s.domain.min[a],
+                               s.domain.max[a]));
+        const double along = (o.max[a] - o.min[a]) / s.fluid.spacing;
+        if (!(along >= 1 - 1e-9))
+            r.fail(p, fmt::format("the paddle is thinner than one spacing ({} m) on axis {}: too "
+                                  "thin a solid for the fluid to see",
+                                  s.fluid.spacing, "xyz"[a]));
+        sites *= std::max(1.0, std::round(along));
+        interior *= std::max(0.0, std::round(along) - 2 * layers);
+    }
+    return sites - interior;
+}
+
+// The viscosity effects. Viscosity is a property of the fluid, so a scene
+// that gives material.viscosity > 0 gets the solver's model for it without
+// naming an effect (the seed's term for seed, Morris's for the others);
+// effects.viscosity chooses the model and may give mu itself. Likewise wcsph
+// keeps solver.artificial_viscosity unless effects.artificial_viscosity says
+// otherwise. A coefficient of 0 means the effect is not in the step.
+void read_viscosity_effects(FieldReader& r, Scene& s) {
+    const std::string default_model = s.solver.name == "seed" ? "seed" : "morris";
+    const std::string model = r.choice(
+        "effects.viscosity.model", "seed for the seed solver, morris for the others",
+        {"seed", "morris"},
+        "Viscosity effect: seed (the report's term, Müller et al. 2003) or morris (Morris et "
+        "al. 1997, laminar, suited to very viscous fluids, no-slip walls).");
+    const double mu = r.number("effects.viscosity.mu", s.material.viscosity, "Pa.s",
+                               "Viscosity effect: dynamic viscosity; default material.viscosity.",
+                               Bound::non_negative);
+    if (r.present("effects.viscosity")) {
+        const bool model_given = r.present("effects.viscosity.model");
+        if (mu > 0)
+            s.effects.viscosity = {model_given ? model : default_model, mu};
+    } else if (s.material.viscosity > 0) {
+        s.effects.viscosity = {default_model, s.material.viscosity};
+    }
+    const double alpha =
+        r.number("effects.artificial_viscosity.alpha", s.solver.artificial_viscosity, "",
+                 "Artificial viscosity effect (Monaghan 1992), its alpha; default "
+                 "solver.artificial_viscosity. Without the key, wcsph uses "
+                 "solver.artificial_viscosity and the other solvers none.",
+                 Bound::non_negative);
+    if (r.present("effects.artificial_viscosity")) {
+        if (alpha > 0)
+            s.effects.artificial_viscosity = alpha;
+    } else if (s.solver.name == "wcsph" && s.solver.artificial_viscosity > 0) {
+        s.effects.artificial_viscosity = s.solver.artificial_viscosity;
+    }
+    const double epsilon = r.number(
+        "effects.xsph.epsilon", 0.5, "",
+        "XSPH velocity smoothing effect (Monaghan 1989): each step draws a particle's "
+        "velocity this fraction of the way to its neighbours' mean; in (0, 1]. Absent: none.",
+        Bound::positive);
+    if (epsilon > 1)
+        r.fail("effects.xsph.epsilon",
+               fmt::format("{} is above 1: XSPH would overshoot the neighbours' mean velocity",
+                           epsilon));
+    if (r.present("effects.xsph"))
+        s.effects.xsph = epsilon;
 }
 
 Scene read_fields(const json& root, const std::string& file, std::set<std::string> overridden,
@@ -768,8 +976,8 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.watchdog.max_speed = r.optional_number(
         "watchdog.max_speed", "m/s", "auto",
         "Speed above which a step counts as failed. Default: twice the sum of the sound "
-        "speed, the speed of a fall over the whole domain and the fastest initial or "
-        "emitter velocity.",
+        "speed, the speed of a fall over the whole domain and the fastest initial, "
+        "emitter or paddle velocity.",
         Bound::positive);
 
     // A scene that gives an `effects` object gets exactly the effects it lists.
@@ -778,6 +986,7 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         "Gravity effect: a uniform acceleration. Absent from an `effects` object the scene "
         "gives (or null): no gravity.");
     s.effects.gravity = r.present("effects") ? gravity : d.effects.gravity;
+    read_viscosity_effects(r, s);
     const double gamma = r.number(
         "effects.surface_tension.gamma", 1.0, "",
         "Surface tension effect (Akinci et al. 2013: cohesion and curvature), its "
@@ -786,8 +995,9 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         Bound::positive);
     if (r.present("effects.surface_tension"))
         s.effects.surface_tension = gamma;
-    read_obstacles(r, dim, s.effects.obstacles);
+    read_obstacles(r, dim, file, s.effects.obstacles);
     read_emitters(r, dim, s.effects.emitters);
+    read_paddles(r, dim, s.effects.paddles);
 
     s.render.size = r.image_size("render.size", d.render.size, "Image width and height.");
     s.render.colour =
@@ -869,6 +1079,10 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         r.fail("effects.obstacles", "obstacles are made of boundary particles, which the seed "
                                     "solver (reflecting walls) does not have; use "
                                     "solver.name=wcsph or dfsph");
+    if (s.solver.name == "seed" && !s.effects.paddles.empty())
+        r.fail("effects.paddles", "paddles are made of boundary particles, which the seed "
+                                  "solver (reflecting walls) does not have; use "
+                                  "solver.name=wcsph or dfsph");
     // Past this the frame counter's conversion from floating point overflows,
     // and the per-frame records outgrow any disk.
     if (!(s.duration * s.fps <= max_frames))
@@ -972,10 +1186,13 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         }
         boundary = outer - inner;
     }
-    // Obstacles' shells; without wall particles their grid covers at most the domain.
+    // Obstacles' and paddles' shells; without wall particles their grid
+    // covers at most the domain.
     for (std::size_t i = 0; i < s.effects.obstacles.size(); ++i)
         boundary += check_obstacle(r, s, i, std::ceil(support));
-    if (!wall_particles && !s.effects.obstacles.empty()) {
+    for (std::size_t i = 0; i < s.effects.paddles.size(); ++i)
+        boundary += check_paddle(r, s, i, std::ceil(support));
+    if (!wall_particles && (!s.effects.obstacles.empty() || !s.effects.paddles.empty())) {
         grid_cells = 1;
         for (int a = 0; a < dim; ++a)
             grid_cells *=
@@ -1169,7 +1386,7 @@ Derived derive(const Scene& s) {
     {
         // The fastest a motion of this scene can physically be: the sound
         // speed, a free fall over the whole box, and the fastest start (a
-        // block's or an emitter's); twice
+        // block's or an emitter's) or paddle; twice
         // that is garbage, however small the step (watchdog.max_speed).
         double g = 0, height = 0, v0 = 0;
         for (int a = 0; a < dim; ++a) {
@@ -1187,6 +1404,14 @@ Derived derive(const Scene& s) {
             fastest(b.velocity);
         for (const auto& e : s.effects.emitters)
             fastest(e.velocity);
+        for (const auto& paddle : s.effects.paddles) {
+            // The peak speed of its motion: |A| 2 pi / T or |V|.
+            Vec3 peak = paddle.velocity;
+            if (paddle.motion == "sine")
+                for (int a = 0; a < dim; ++a)
+                    peak[a] = paddle.amplitude[a] * 2 * M_PI / paddle.period;
+            fastest(peak);
+        }
         d.max_speed = s.watchdog.max_speed
                           ? *s.watchdog.max_speed
                           : 2 * (d.sound_speed + std::sqrt(2 * std::sqrt(g) * height) + v0);
@@ -1202,7 +1427,8 @@ Derived derive(const Scene& s) {
                 g += (*s.effects.gravity)[a] * (*s.effects.gravity)[a];
         d.dt = stable_time_step(
             time_step_settings(s),
-            {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density, s.material.viscosity},
+            {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density,
+             s.effects.viscosity ? s.effects.viscosity->mu : 0.0},
             {.carries_sound = s.solver.name != "dfsph"}, {0, std::sqrt(g)});
     }
     for (const auto& b : s.fluid.blocks) {
@@ -1242,6 +1468,13 @@ json to_json(const Scene& s) {
     json effects = json::object();
     if (s.effects.gravity)
         effects["gravity"] = vec(*s.effects.gravity);
+    if (s.effects.viscosity)
+        effects["viscosity"] = {{"model", s.effects.viscosity->model},
+                                {"mu", s.effects.viscosity->mu}};
+    if (s.effects.artificial_viscosity)
+        effects["artificial_viscosity"] = {{"alpha", *s.effects.artificial_viscosity}};
+    if (s.effects.xsph)
+        effects["xsph"] = {{"epsilon", *s.effects.xsph}};
     if (s.effects.surface_tension)
         effects["surface_tension"] = {{"gamma", *s.effects.surface_tension}};
     if (!s.effects.obstacles.empty()) {
@@ -1250,7 +1483,13 @@ json to_json(const Scene& s) {
             obstacles.push_back(
                 o.shape == ObstacleShape::box
                     ? json{{"box", {{"min", vec(o.min)}, {"max", vec(o.max)}}}}
-                    : json{{"sphere", {{"centre", vec(o.centre)}, {"radius", o.radius}}}});
+                : o.shape == ObstacleShape::sphere
+                    ? json{{"sphere", {{"centre", vec(o.centre)}, {"radius", o.radius}}}}
+                    // The file as the scene names it, relative to the scene's folder.
+                    : json{{"mesh",
+                            {{"file", o.mesh_file},
+                             {"scale", o.mesh_scale},
+                             {"offset", vec(o.mesh_offset)}}}});
         effects["obstacles"] = obstacles;
     }
     if (!s.effects.emitters.empty()) {
@@ -1262,6 +1501,22 @@ json to_json(const Scene& s) {
                                 {"start", e.start},
                                 {"end", e.end}});
         effects["emitters"] = emitters;
+    }
+    if (!s.effects.paddles.empty()) {
+        json paddles = json::array();
+        for (const auto& o : s.effects.paddles) {
+            json paddle = {{"min", vec(o.min)}, {"max", vec(o.max)}, {"motion", o.motion}};
+            if (o.motion == "sine") {
+                paddle["amplitude"] = vec(o.amplitude);
+                paddle["period"] = o.period;
+            } else {
+                paddle["velocity"] = vec(o.velocity);
+                paddle["end"] = o.end;
+            }
+            paddle["start"] = o.start;
+            paddles.push_back(paddle);
+        }
+        effects["paddles"] = paddles;
     }
     return {
         {"dimension", dim},

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -23,13 +24,19 @@ struct FluidBlock {
     Vec3 velocity{0, 0, 0};          // m/s, initial velocity of its particles
 };
 
-// A static solid the fluid flows around (effects.obstacles): a box, or a
-// sphere (a circle in 2D).
+// A static solid the fluid flows around (effects.obstacles): a box, a
+// sphere (a circle in 2D) or, in 3D, a closed triangle mesh from an OBJ file.
 struct SceneObstacle {
     ObstacleShape shape = ObstacleShape::box;
     Vec3 min{0, 0, 0}, max{0, 0, 0}; // m, the box's corners
     Vec3 centre{0, 0, 0};            // m, the sphere's centre
     double radius = 0;               // m, the sphere's radius
+    std::string mesh_file;           // the mesh's OBJ file as the scene names it
+    double mesh_scale = 1;           // file units to m
+    Vec3 mesh_offset{0, 0, 0};       // m, added after scaling
+    // Read when the scene loads, in scene coordinates: the file is read once
+    // and the simulation and the renderer share it.
+    std::shared_ptr<const TriangleMesh> mesh;
 };
 
 // A stream of fluid entering through a box (effects.emitters): the box is
@@ -40,6 +47,18 @@ struct SceneEmitter {
     Vec3 velocity{0, 0, 0};          // m/s, not zero
     double start = 0;                // s
     double end = 1e300;              // s
+};
+
+// A box that moves with a prescribed motion (effects.paddles): a piston
+// wavemaker. Before `start` and at zero displacement it is at [min, max].
+struct ScenePaddle {
+    Vec3 min{0, 0, 0}, max{0, 0, 0}; // m, the box at rest
+    std::string motion = "sine";     // sine | linear
+    Vec3 amplitude{0, 0, 0};         // m, sine: d = A sin(2 pi (t - start) / period)
+    double period = 1;               // s, sine
+    Vec3 velocity{0, 0, 0};          // m/s, linear: d = V (t - start) until end
+    double start = 0;                // s
+    double end = 1e300;              // s, linear
 };
 
 struct Scene {
@@ -78,7 +97,7 @@ struct Scene {
         double dt_max = 5e-3;                        // s
         std::string integrator = "symplectic_euler"; // symplectic_euler | verlet
         std::string walls = "auto";                  // auto | reflect | particles
-        double artificial_viscosity = 0.02;          // alpha (wcsph)
+        double artificial_viscosity = 0.02;          // alpha (wcsph; see effects)
         double tolerance = 0.05;                     // % density error (dfsph)
         double divergence_tolerance = 0.1;           // % per step (dfsph)
         int min_iterations = 2;                      // dfsph
@@ -98,9 +117,20 @@ struct Scene {
     // Each present key is an effect in the step; an absent one costs nothing.
     struct Effects {
         std::optional<Vec3> gravity = Vec3{0, -9.81, 0}; // m/s^2
-        std::optional<double> surface_tension;           // gamma (Akinci et al. 2013)
+        // Viscosity model and mu, from effects.viscosity or, without it, a
+        // material.viscosity above 0 with the solver's default model.
+        struct Viscosity {
+            std::string model; // seed | morris
+            double mu = 0;     // Pa.s
+        };
+        std::optional<Viscosity> viscosity;
+        // alpha: effects.artificial_viscosity, or solver.artificial_viscosity for wcsph.
+        std::optional<double> artificial_viscosity;
+        std::optional<double> xsph;            // epsilon of XSPH velocity smoothing
+        std::optional<double> surface_tension; // gamma (Akinci et al. 2013)
         std::vector<SceneObstacle> obstacles;            // static solids; none by default
         std::vector<SceneEmitter> emitters;              // fluid sources; none by default
+        std::vector<ScenePaddle> paddles;                // moving boxes; none by default
     } effects;
 
     struct Render {

@@ -1,9 +1,13 @@
 #include "io/scene_setup.hpp"
 
 #include "io/input_error.hpp"
+#include "sph/effects/artificial_viscosity.hpp"
 #include "sph/effects/emitter.hpp"
 #include "sph/effects/gravity.hpp"
+#include "sph/effects/laminar_viscosity.hpp"
+#include "sph/effects/seed_viscosity.hpp"
 #include "sph/effects/surface_tension.hpp"
+#include "sph/effects/xsph.hpp"
 #include "sph/lattice.hpp"
 
 namespace sph {
@@ -22,10 +26,27 @@ std::vector<Obstacle<D>> make_obstacles(const Scene& scene) {
     std::vector<Obstacle<D>> obstacles;
     for (const auto& o : scene.effects.obstacles)
         obstacles.push_back(
-            {o.shape, {to_vec<D>(o.min), to_vec<D>(o.max)}, to_vec<D>(o.centre), o.radius});
+            {o.shape, {to_vec<D>(o.min), to_vec<D>(o.max)}, to_vec<D>(o.centre), o.radius, o.mesh});
     return obstacles;
 }
 } // namespace
+
+template <int D>
+std::vector<Paddle<D>> make_paddles(const Scene& scene) {
+    std::vector<Paddle<D>> paddles;
+    for (const auto& o : scene.effects.paddles) {
+        Paddle<D> p;
+        p.box = {to_vec<D>(o.min), to_vec<D>(o.max)};
+        p.motion = o.motion == "linear" ? PaddleMotion::linear : PaddleMotion::sine;
+        p.amplitude = to_vec<D>(o.amplitude);
+        p.period = o.period;
+        p.velocity = to_vec<D>(o.velocity);
+        p.start = o.start;
+        p.end = o.end;
+        paddles.push_back(p);
+    }
+    return paddles;
+}
 
 template <int D>
 Params<D> make_params(const Scene& scene, const Derived& derived) {
@@ -34,9 +55,9 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.h = derived.h;
     p.rest_density = scene.material.rest_density;
     p.bulk_modulus = scene.material.bulk_modulus;
-    p.viscosity = scene.material.viscosity;
+    // For the time step's viscous condition; the effect holds its own mu.
+    p.viscosity = scene.effects.viscosity ? scene.effects.viscosity->mu : 0;
     p.spacing = scene.fluid.spacing;
-    p.artificial_viscosity = scene.solver.artificial_viscosity;
     p.kernel = kernel_kind(derived.kernel);
     p.integrator =
         scene.solver.integrator == "verlet" ? Integrator::verlet : Integrator::symplectic_euler;
@@ -49,15 +70,18 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                   scene.watchdog.max_displacement, derived.max_speed};
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     p.obstacles = make_obstacles<D>(scene);
+    p.paddles = make_paddles<D>(scene);
     return p;
 }
 
 template <int D>
 State<D> make_initial_state(const Scene& scene, const Derived& derived) {
     const Real s = scene.fluid.spacing;
-    // Sites inside an obstacle, or too near one, are left empty: a block may
-    // be placed across an obstacle.
-    const std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene);
+    // Sites inside an obstacle or a paddle (at rest), or too near one, are
+    // left empty: a block may be placed across them.
+    std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene);
+    for (const Paddle<D>& paddle : make_paddles<D>(scene))
+        obstacles.push_back({ObstacleShape::box, paddle.box, Vec<D>(0), 0, nullptr});
     State<D> state;
     state.resize(derived.particles);
     std::size_t next = 0;
@@ -97,6 +121,17 @@ EffectList<D> make_effects(const Scene& scene) {
     EffectList<D> effects;
     if (scene.effects.gravity)
         effects.push_back(std::make_unique<Gravity<D>>(to_vec<D>(*scene.effects.gravity)));
+    if (const auto& viscosity = scene.effects.viscosity) {
+        if (viscosity->model == "seed")
+            effects.push_back(std::make_unique<SeedViscosity<D>>(viscosity->mu));
+        else
+            effects.push_back(std::make_unique<LaminarViscosity<D>>(viscosity->mu));
+    }
+    if (scene.effects.artificial_viscosity)
+        effects.push_back(
+            std::make_unique<ArtificialViscosity<D>>(*scene.effects.artificial_viscosity));
+    if (scene.effects.xsph)
+        effects.push_back(std::make_unique<Xsph<D>>(*scene.effects.xsph));
     if (scene.effects.surface_tension)
         effects.push_back(std::make_unique<SurfaceTension<D>>(*scene.effects.surface_tension));
     for (const auto& e : scene.effects.emitters) {
@@ -135,6 +170,8 @@ Simulation<D> make_simulation(const Scene& scene, const Derived& derived) {
         make_neighbour_search<D>(scene.solver.neighbour_search), make_effects<D>(scene));
 }
 
+template std::vector<Paddle<2>> make_paddles<2>(const Scene&);
+template std::vector<Paddle<3>> make_paddles<3>(const Scene&);
 template Params<2> make_params<2>(const Scene&, const Derived&);
 template Params<3> make_params<3>(const Scene&, const Derived&);
 template State<2> make_initial_state<2>(const Scene&, const Derived&);

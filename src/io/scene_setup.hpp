@@ -10,6 +10,11 @@ namespace sph {
 template <int D>
 Params<D> make_params(const Scene& scene, const Derived& derived);
 
+// The scene's paddles (effects.paddles) as the core's; the renderer draws
+// them where their motion has them at a frame's time.
+template <int D>
+std::vector<Paddle<D>> make_paddles(const Scene& scene);
+
 // Every block filled on its lattice, ids in creation order.
 template <int D>
 State<D> make_initial_state(const Scene& scene, const Derived& derived);

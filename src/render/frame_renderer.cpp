@@ -1,5 +1,6 @@
 #include "render/frame_renderer.hpp"
 
+#include "io/scene_setup.hpp"
 #include "render/colour_maps.hpp"
 #include "render/sphere_geometry.hpp"
 #include "render/text.hpp"
@@ -72,9 +73,50 @@ struct OverlayVertex {
     float x, y, z, ramp;
 };
 
+// A box from lo to hi: in 2D (flat) a filled rectangle at depth `behind` with
+// its outline, in 3D its edges.
+void append_box(const glm::vec3& lo, const glm::vec3& hi, bool flat, float behind,
+                std::vector<OverlayVertex>& lines, std::vector<OverlayVertex>& fill) {
+    auto line = [&](glm::vec3 p, glm::vec3 q) {
+        lines.push_back({p.x, p.y, p.z, -1});
+        lines.push_back({q.x, q.y, q.z, -1});
+    };
+    if (flat) {
+        const glm::vec3 c[4] = {{lo.x, lo.y, 0}, {hi.x, lo.y, 0}, {hi.x, hi.y, 0}, {lo.x, hi.y, 0}};
+        for (int k = 0; k < 4; ++k)
+            line(c[k], c[(k + 1) % 4]);
+        for (int k : {0, 1, 2, 0, 2, 3})
+            fill.push_back({c[k].x, c[k].y, behind, -1});
+        return;
+    }
+    for (int a = 0; a < 3; ++a)
+        for (int corner = 0; corner < 4; ++corner) {
+            glm::vec3 p = lo;
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            p[b] = corner & 1 ? hi[b] : lo[b];
+            p[c] = corner & 2 ? hi[c] : lo[c];
+            glm::vec3 q = p;
+            q[a] = hi[a];
+            line(p, q);
+        }
+}
+
+// The paddles at time t, relative to `origin`, as boxes (append_box).
+void append_paddles(const RenderSettings& s, double t, const glm::dvec3& origin, float behind,
+                    std::vector<OverlayVertex>& lines, std::vector<OverlayVertex>& fill) {
+    const bool flat = s.dimension == 2;
+    for (const Paddle<3>& paddle : s.paddles) {
+        const Box<3> box = paddle.box_at(t);
+        const glm::vec3 lo(box.min - origin), hi(box.max - origin);
+        append_box({lo.x, lo.y, flat ? 0.f : lo.z}, {hi.x, hi.y, flat ? 0.f : hi.z}, flat, behind,
+                   lines, fill);
+    }
+}
+
 // The obstacles, positions relative to `origin`: in 2D each a filled shape at
 // depth `behind` (behind the particles) with its outline; in 3D the edges of
-// a box and three great circles of a sphere.
+// a box and three great circles of a sphere (a mesh is drawn solid, by
+// mesh_obstacle_triangles).
 void append_obstacles(const RenderSettings& s, const glm::dvec3& origin, float behind,
                       std::vector<OverlayVertex>& lines, std::vector<OverlayVertex>& fill) {
     constexpr int segments = 64;
@@ -92,27 +134,10 @@ void append_obstacles(const RenderSettings& s, const glm::dvec3& origin, float b
             fill.push_back({v.x, v.y, behind, -1});
     };
     for (const SceneObstacle& o : s.obstacles) {
+        if (o.shape == ObstacleShape::mesh)
+            continue;
         if (o.shape == ObstacleShape::box) {
-            const glm::vec3 lo = at(o.min), hi = at(o.max);
-            if (flat) {
-                const glm::vec3 c[4] = {
-                    {lo.x, lo.y, 0}, {hi.x, lo.y, 0}, {hi.x, hi.y, 0}, {lo.x, hi.y, 0}};
-                for (int k = 0; k < 4; ++k)
-                    line(c[k], c[(k + 1) % 4]);
-                triangle(c[0], c[1], c[2]);
-                triangle(c[0], c[2], c[3]);
-                continue;
-            }
-            for (int a = 0; a < 3; ++a)
-                for (int corner = 0; corner < 4; ++corner) {
-                    glm::vec3 p = lo;
-                    const int b = (a + 1) % 3, c = (a + 2) % 3;
-                    p[b] = corner & 1 ? hi[b] : lo[b];
-                    p[c] = corner & 2 ? hi[c] : lo[c];
-                    glm::vec3 q = p;
-                    q[a] = hi[a];
-                    line(p, q);
-                }
+            append_box(at(o.min), at(o.max), flat, behind, lines, fill);
             continue;
         }
         const glm::vec3 centre = at(o.centre);
@@ -136,6 +161,26 @@ void append_obstacles(const RenderSettings& s, const glm::dvec3& origin, float b
     }
 }
 
+// The mesh obstacles' triangles relative to `origin`, each vertex followed by
+// its face's normal (x, y, z, nx, ny, nz): flat shading shows the facets the
+// simulation sees.
+std::vector<float> mesh_obstacle_triangles(const RenderSettings& s, const glm::dvec3& origin) {
+    std::vector<float> out;
+    for (const SceneObstacle& o : s.obstacles) {
+        if (o.shape != ObstacleShape::mesh || !o.mesh)
+            continue;
+        const TriangleMesh& mesh = *o.mesh;
+        for (std::size_t t = 0; t < mesh.triangles().size(); ++t)
+            for (const std::uint32_t v : mesh.triangles()[t]) {
+                for (int a = 0; a < 3; ++a)
+                    out.push_back(float(mesh.vertices()[v][a] - origin[a]));
+                for (int a = 0; a < 3; ++a)
+                    out.push_back(float(mesh.face_normals()[t][a]));
+            }
+    }
+    return out;
+}
+
 } // namespace
 
 RenderSettings make_render_settings(const Scene& scene) {
@@ -151,6 +196,7 @@ RenderSettings make_render_settings(const Scene& scene) {
         r.domain_max[a] = scene.domain.max[a];
     }
     r.obstacles = scene.effects.obstacles;
+    r.paddles = make_paddles<3>(scene);
     // Physical scales of the scene for ranges it does not fix.
     const double height = r.domain_max.y - r.domain_min.y;
     double g = 0;
@@ -207,10 +253,11 @@ RenderSettings make_render_settings(const Scene& scene) {
 }
 
 struct FrameRenderer::Gl {
-    GLuint impostor_program = 0, mesh_program = 0, overlay_program = 0;
-    GLuint impostor_vao = 0, mesh_vao = 0, overlay_vao = 0;
+    GLuint impostor_program = 0, mesh_program = 0, overlay_program = 0, solid_program = 0;
+    GLuint impostor_vao = 0, mesh_vao = 0, overlay_vao = 0, solid_vao = 0;
     GLuint quad_buffer = 0, instance_buffer = 0, mesh_vertex_buffer = 0, mesh_index_buffer = 0;
-    GLuint overlay_buffer = 0;
+    GLuint overlay_buffer = 0, solid_buffer = 0;
+    GLsizei solid_vertex_count = 0; // mesh obstacles, uploaded once
     GLsizei mesh_index_count = 0;
     std::size_t instance_capacity = 0;
     GLuint colour_map = 0;
@@ -224,11 +271,12 @@ struct FrameRenderer::Gl {
         glDeleteProgram(impostor_program);
         glDeleteProgram(mesh_program);
         glDeleteProgram(overlay_program);
-        const GLuint vaos[] = {impostor_vao, mesh_vao, overlay_vao};
-        glDeleteVertexArrays(3, vaos);
-        const GLuint buffers[] = {quad_buffer, instance_buffer, mesh_vertex_buffer,
-                                  mesh_index_buffer, overlay_buffer};
-        glDeleteBuffers(5, buffers);
+        glDeleteProgram(solid_program);
+        const GLuint vaos[] = {impostor_vao, mesh_vao, overlay_vao, solid_vao};
+        glDeleteVertexArrays(4, vaos);
+        const GLuint buffers[] = {quad_buffer,       instance_buffer, mesh_vertex_buffer,
+                                  mesh_index_buffer, overlay_buffer,  solid_buffer};
+        glDeleteBuffers(6, buffers);
         glDeleteTextures(1, &colour_map);
         const GLuint framebuffers[] = {msaa_fbo, resolve_fbo};
         glDeleteFramebuffers(2, framebuffers);
@@ -292,6 +340,25 @@ FrameRenderer::FrameRenderer(const RenderSettings& settings)
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(OverlayVertex),
                           reinterpret_cast<void*>(12));
+
+    // Mesh obstacles never move: their triangles are uploaded once.
+    const std::vector<float> solid =
+        mesh_obstacle_triangles(settings, 0.5 * (settings.domain_min + settings.domain_max));
+    if (!solid.empty()) {
+        g.solid_program = link(shaders::solid_vert, shaders::solid_frag, shaders::lighting);
+        glGenVertexArrays(1, &g.solid_vao);
+        glBindVertexArray(g.solid_vao);
+        glGenBuffers(1, &g.solid_buffer);
+        glBindBuffer(GL_ARRAY_BUFFER, g.solid_buffer);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(solid.size() * sizeof(float)), solid.data(),
+                     GL_STATIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                              reinterpret_cast<void*>(3 * sizeof(float)));
+        g.solid_vertex_count = GLsizei(solid.size() / 6);
+    }
     glBindVertexArray(0);
 
     const auto table = colour_map_table(settings.colour_map, 256);
@@ -438,6 +505,18 @@ Image FrameRenderer::render(const Snapshot& frame) {
         }
     }
 
+    // Mesh obstacles, solid and lit like the particles, depth-tested with them.
+    if (g.solid_vertex_count > 0 && !orthographic) {
+        glUseProgram(g.solid_program);
+        glUniformMatrix4fv(glGetUniformLocation(g.solid_program, "u_view"), 1, GL_FALSE,
+                           glm::value_ptr(view));
+        glUniformMatrix4fv(glGetUniformLocation(g.solid_program, "u_projection"), 1, GL_FALSE,
+                           glm::value_ptr(projection));
+        glUniform3f(glGetUniformLocation(g.solid_program, "u_colour"), 0.62f, 0.6f, 0.56f);
+        glBindVertexArray(g.solid_vao);
+        glDrawArrays(GL_TRIANGLES, 0, g.solid_vertex_count);
+    }
+
     // The domain box, depth-tested so the fluid hides its far edges.
     g.lines.clear();
     const glm::vec3 lo(s.domain_min - origin), hi(s.domain_max - origin);
@@ -480,6 +559,15 @@ Image FrameRenderer::render(const Snapshot& frame) {
     };
     draw_overlay(g.overlay_triangles, GL_TRIANGLES, projection * view, {0.3f, 0.32f, 0.36f, 1.f});
     draw_overlay(g.lines, GL_LINES, projection * view, {0.55f, 0.58f, 0.62f, 1.f});
+    // Paddles in a warmer grey than the static solids: the parts that move.
+    if (!s.paddles.empty()) {
+        g.lines.clear();
+        g.overlay_triangles.clear();
+        append_paddles(s, frame.time, origin, float(-2 * s.radius), g.lines, g.overlay_triangles);
+        draw_overlay(g.overlay_triangles, GL_TRIANGLES, projection * view,
+                     {0.45f, 0.38f, 0.3f, 1.f});
+        draw_overlay(g.lines, GL_LINES, projection * view, {0.78f, 0.66f, 0.5f, 1.f});
+    }
 
     // Colour bar, its labels and the caption, in pixels (y down).
     glDisable(GL_DEPTH_TEST);

@@ -27,7 +27,11 @@ struct RenderSettings {
     int mesh_subdivisions = 1;         // mesh: 80 triangles per sphere
     double radius = 0.001;             // m, drawn sphere radius
     glm::dvec3 domain_min{0}, domain_max{1};
-    std::vector<SceneObstacle> obstacles;            // drawn solid (2D) or as wire outlines (3D)
+    std::vector<SceneObstacle> obstacles; // drawn solid (2D) or as wire outlines (3D)
+    // Drawn as boxes (as box obstacles are) where their motion has them at
+    // the frame's time: the motion is known in closed form, so the snapshot
+    // need not carry it.
+    std::vector<Paddle<3>> paddles;
     glm::dvec3 camera_position{0}, camera_target{0}; // 3D
     double fov = 40;                                 // degrees, vertical
     int samples = 4;                                 // multisampling

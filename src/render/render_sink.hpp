@@ -1,43 +1,55 @@
 #pragma once
 // The frame sink that makes pictures: renders each frame in the headless GL
-// context, writes frames/frame_NNNNN.png (on a worker thread) and feeds the
-// same pixels to the MP4 encoder.
+// context, writes frames/frame_NNNNN.png and feeds the same pixels to the MP4
+// encoder, each on a worker thread of its own. Rendering stays on the calling
+// thread, which owns the GL context.
 
 #include "io/frame_sink.hpp"
-#include "io/mp4_writer.hpp"
+#include "io/mp4_writer_thread.hpp"
 #include "io/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace sph {
 
+// Seconds one frame cost. render_s, readback_s and encode_wait_s are the
+// calling thread's; encode_s is the encoder's, which overlaps the caller's
+// work when it runs on its worker thread.
 struct FrameCost {
-    double render_s = 0, readback_s = 0, encode_s = 0;
+    double render_s = 0, readback_s = 0;
+    double encode_s = 0;      // colour conversion, libx264, muxing
+    double encode_wait_s = 0; // the caller blocked on a full encoder queue
 };
 
 class RenderSink final : public FrameSink {
   public:
-    // `png_folder` empty: no PNGs; `mp4_path` empty: no video.
+    // `png_folder` empty: no PNGs; `mp4_path` empty: no video. `encode`:
+    // same_thread is the sequential path (the same bytes, no overlap).
     RenderSink(std::unique_ptr<GlContext> context, const RenderSettings& settings,
                std::filesystem::path png_folder, std::filesystem::path mp4_path, double fps,
-               const Mp4Options& mp4_options);
+               const Mp4Options& mp4_options, EncodeThread encode = EncodeThread::worker);
     void write(const Snapshot& frame) override;
     // Waits for the PNGs and finalises the video, also after an early stop.
     void finish() override;
 
     const GlInfo& gl_info() const { return context_->info(); }
-    const std::vector<FrameCost>& costs() const { return costs_; }
+    // Per frame written; the encoder's part is complete after finish().
+    std::vector<FrameCost> costs() const;
+    // The encoder's times, totals included (none without a video).
+    std::optional<Mp4WriterThread::Times> encode_times() const;
+    bool encodes_on_worker() const { return mp4_ && mp4_->on_worker(); }
 
   private:
     std::unique_ptr<GlContext> context_;
     FrameRenderer renderer_;
     std::filesystem::path png_folder_;
     std::unique_ptr<PngWriterThread> png_;
-    std::unique_ptr<Mp4Writer> mp4_;
+    std::unique_ptr<Mp4WriterThread> mp4_;
     std::vector<FrameCost> costs_;
 };
 

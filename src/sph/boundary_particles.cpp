@@ -10,42 +10,45 @@
 namespace sph {
 
 template <int D>
-typename BoundaryParticles<D>::Cell BoundaryParticles<D>::cell_of(const Vec<D>& x) const {
+typename BoundaryParticles<D>::Cell BoundaryParticles<D>::cell_of(const Grid& grid,
+                                                                  const Vec<D>& x) const {
     // Clamped before the conversion: a point far outside (or not finite)
     // lands outside the grid instead of overflowing.
     Cell c;
     for (int a = 0; a < D; ++a) {
-        const Real k = std::floor((x[a] - origin_[a]) / h_);
-        c[a] = k >= -2 && k <= Real(cells_[a] + 1) ? static_cast<std::int64_t>(k) : -2;
+        const Real k = std::floor((x[a] - grid.origin[a]) / h_);
+        c[a] = k >= -2 && k <= Real(grid.cells[a] + 1) ? static_cast<std::int64_t>(k) : -2;
     }
     return c;
 }
 
 template <int D>
-std::size_t BoundaryParticles<D>::cell_index(const Cell& c) const {
+std::size_t BoundaryParticles<D>::cell_index(const Grid& grid, const Cell& c) {
     std::size_t index = 0;
     for (int a = D - 1; a >= 0; --a)
-        index = index * static_cast<std::size_t>(cells_[a]) + static_cast<std::size_t>(c[a]);
+        index = index * static_cast<std::size_t>(grid.cells[a]) + static_cast<std::size_t>(c[a]);
     return index;
 }
 
 template <int D>
-template <class Visit>
-void BoundaryParticles<D>::for_each_near(const Vec<D>& x, Visit&& visit) const {
-    const Cell centre = cell_of(x);
+template <bool Moving, class Visit>
+void BoundaryParticles<D>::for_each_in(const Grid& grid, const Vec<D>& x, Visit&& visit) const {
+    const Cell centre = cell_of(grid, x);
     Cell lo, hi;
     for (int a = 0; a < D; ++a) {
         lo[a] = std::max<std::int64_t>(centre[a] - 1, 0);
-        hi[a] = std::min<std::int64_t>(centre[a] + 1, cells_[a] - 1);
+        hi[a] = std::min<std::int64_t>(centre[a] + 1, grid.cells[a] - 1);
         if (lo[a] > hi[a])
-            return; // far outside the walls' box
+            return; // far outside the grid's box
     }
     const Real r2 = h_ * h_;
     auto visit_cell = [&](const Cell& c) {
-        const std::size_t k = cell_index(c);
-        for (std::uint32_t b = cell_start_[k]; b < cell_start_[k + 1]; ++b)
+        const std::size_t k = cell_index(grid, c);
+        for (std::uint32_t e = grid.cell_start[k]; e < grid.cell_start[k + 1]; ++e) {
+            const std::uint32_t b = Moving ? moving_order_[e] : e;
             if (squared_length<D>(x - positions_[b]) < r2)
                 visit(b);
+        }
     };
     if constexpr (D == 2) {
         for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
@@ -60,34 +63,49 @@ void BoundaryParticles<D>::for_each_near(const Vec<D>& x, Visit&& visit) const {
 }
 
 template <int D>
-std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> positions) {
-    const std::size_t n = positions.size();
-    if (n == 0) {
-        cell_start_.assign(2, 0);
-        for (int a = 0; a < D; ++a)
-            cells_[a] = 1;
-        return {};
-    }
-    Vec<D> lo = positions[0], hi = positions[0];
-    for (const Vec<D>& x : positions) {
+template <class Visit>
+void BoundaryParticles<D>::for_each_near(const Vec<D>& x, Visit&& visit) const {
+    for_each_in<false>(grid_, x, visit);
+    if (has_moving())
+        for_each_in<true>(moving_grid_, x, visit);
+}
+
+template <int D>
+std::size_t BoundaryParticles<D>::fit_grid(Grid& grid, std::span<const Vec<D>> points) const {
+    Vec<D> lo = points[0], hi = points[0];
+    for (const Vec<D>& x : points) {
         lo = glm::min(lo, x);
         hi = glm::max(hi, x);
     }
-    origin_ = lo;
+    grid.origin = lo;
     std::size_t total = 1;
     for (int a = 0; a < D; ++a) {
-        cells_[a] = static_cast<std::int64_t>(std::floor((hi[a] - lo[a]) / h_)) + 1;
-        total *= static_cast<std::size_t>(cells_[a]);
+        grid.cells[a] = static_cast<std::int64_t>(std::floor((hi[a] - lo[a]) / h_)) + 1;
+        total *= static_cast<std::size_t>(grid.cells[a]);
     }
+    return total;
+}
+
+template <int D>
+std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> positions) {
+    const std::size_t n = positions.size();
+    if (n == 0) {
+        grid_.cell_start.assign(2, 0);
+        for (int a = 0; a < D; ++a)
+            grid_.cells[a] = 1;
+        return {};
+    }
+    const std::size_t total = fit_grid(grid_, positions);
     // Counting sort by cell: positions end up grouped cell by cell.
     std::vector<std::size_t> cell(n);
-    cell_start_.assign(total + 1, 0);
+    std::vector<std::uint32_t>& cell_start = grid_.cell_start;
+    cell_start.assign(total + 1, 0);
     for (std::size_t b = 0; b < n; ++b) {
-        cell[b] = cell_index(cell_of(positions[b]));
-        ++cell_start_[cell[b] + 1];
+        cell[b] = cell_index(grid_, cell_of(grid_, positions[b]));
+        ++cell_start[cell[b] + 1];
     }
-    std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
-    std::vector<std::uint32_t> next(cell_start_.begin(), cell_start_.end() - 1);
+    std::partial_sum(cell_start.begin(), cell_start.end(), cell_start.begin());
+    std::vector<std::uint32_t> next(cell_start.begin(), cell_start.end() - 1);
     std::vector<std::uint32_t> destination(n);
     positions_.resize(n);
     for (std::size_t b = 0; b < n; ++b) {
@@ -98,10 +116,51 @@ std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> 
 }
 
 template <int D>
+void BoundaryParticles<D>::add_moving(std::vector<Vec<D>> rest, std::vector<Real> volumes,
+                                      std::vector<std::uint32_t> group) {
+    assert(rest.size() == volumes.size() && rest.size() == group.size());
+    assert(!has_moving()); // one set of moving particles
+    moving_begin_ = positions_.size();
+    positions_.insert(positions_.end(), rest.begin(), rest.end());
+    volumes_.insert(volumes_.end(), volumes.begin(), volumes.end());
+    rest_ = std::move(rest);
+    group_ = std::move(group);
+    moving_velocities_.assign(rest_.size(), Vec<D>(0));
+    refresh_moving_grid();
+}
+
+template <int D>
+void BoundaryParticles<D>::refresh_moving_grid() {
+    const std::span<const Vec<D>> moving =
+        std::span<const Vec<D>>(positions_).subspan(moving_begin_);
+    const std::size_t n = moving.size();
+    if (n == 0)
+        return;
+    // Counting sort of the moving particles' indices by cell; their data stay
+    // in place, in the order their motion writes them. Sizes settle after the
+    // first call: no allocation per step.
+    const std::size_t total = fit_grid(moving_grid_, moving);
+    std::vector<std::uint32_t>& cell_start = moving_grid_.cell_start;
+    cell_start.assign(total + 1, 0);
+    moving_cell_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        moving_cell_[k] = cell_index(moving_grid_, cell_of(moving_grid_, moving[k]));
+        ++cell_start[moving_cell_[k] + 1];
+    }
+    std::partial_sum(cell_start.begin(), cell_start.end(), cell_start.begin());
+    moving_next_.assign(cell_start.begin(), cell_start.end() - 1);
+    moving_order_.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+        moving_order_[moving_next_[moving_cell_[k]]++] =
+            static_cast<std::uint32_t>(moving_begin_ + k);
+}
+
+template <int D>
 BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, Real volume)
     : h_(h) {
     build_grid(std::move(positions));
     volumes_.assign(positions_.size(), volume);
+    moving_begin_ = positions_.size();
 }
 
 template <int D>
@@ -113,6 +172,7 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vect
     volumes_.resize(volumes.size());
     for (std::size_t b = 0; b < volumes.size(); ++b)
         volumes_[destination[b]] = volumes[b];
+    moving_begin_ = positions_.size();
 }
 
 template <int D>
@@ -120,6 +180,7 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, K
     : h_(h) {
     build_grid(std::move(positions));
     const std::size_t n = positions_.size();
+    moving_begin_ = n;
     // V_b = 1 / sum_k W_bk, the particle itself included (Akinci et al. 2012, eq. 4).
     volumes_.resize(n);
     with_kernel<D>(kernel, h, [&](const auto& W) {

@@ -6,8 +6,10 @@
 // amount of "fluid" to the density of a particle beside it:
 //   rho_i = sum_j m W_ij + sum_b rho0 V_b W_ib       (eq. 6)
 // and pressure pushes a particle away from the wall as it would from fluid.
-// Boundary particles never move; they live apart from the fluid State, with a
-// grid of their own built once.
+// They live apart from the fluid State, with a grid of their own built once.
+// Paddles (sph/paddles.hpp) add particles that move: they come after the
+// static ones, with velocities and a second grid rebuilt whenever they move,
+// so the static grid, and every sum over static particles, stays as it is.
 
 #include "sph/kernels.hpp"
 #include "sph/neighbours/neighbour_list.hpp"
@@ -46,26 +48,68 @@ class BoundaryParticles {
     std::span<const Real> volumes() const { return volumes_; }
 
     // For every point of `query`, the boundary particles closer than h
-    // (strictly). Reuses the memory of `out`.
+    // (strictly): the static ones first, then the moving ones. Reuses the
+    // memory of `out`.
     void find_neighbours(std::span<const Vec<D>> query, NeighbourList& out) const;
 
+    // Adds particles that move (a paddle's shell), after the static ones:
+    // particle moving_begin() + k is at rest at rest[k], fills volumes[k] and
+    // belongs to group[k] (its paddle). They start at rest, at zero velocity.
+    void add_moving(std::vector<Vec<D>> rest, std::vector<Real> volumes,
+                    std::vector<std::uint32_t> group);
+    // The first moving particle; size() when none moves.
+    std::size_t moving_begin() const { return moving_begin_; }
+    bool has_moving() const { return moving_begin_ < positions_.size(); }
+    std::span<const Vec<D>> rest_positions() const { return rest_; }
+    std::span<const std::uint32_t> groups() const { return group_; }
+    // The moving particles' positions and velocities, in add_moving's order,
+    // to be set by their motion; refresh_moving_grid() after moving them.
+    std::span<Vec<D>> moving_positions() {
+        return std::span<Vec<D>>(positions_).subspan(moving_begin_);
+    }
+    std::span<Vec<D>> moving_velocities() { return moving_velocities_; }
+    void refresh_moving_grid();
+    // Velocity of particle b (m/s): exactly 0 for a static one.
+    Vec<D> velocity(std::uint32_t b) const {
+        return b < moving_begin_ ? Vec<D>(0) : moving_velocities_[b - moving_begin_];
+    }
+
   private:
-    // Sorts the particles into the grid; where each of `positions` went.
-    std::vector<std::uint32_t> build_grid(std::vector<Vec<D>> positions);
     using Cell = glm::vec<D, std::int64_t, glm::defaultp>;
-    Cell cell_of(const Vec<D>& x) const;
-    std::size_t cell_index(const Cell& c) const;
+    // Dense grid of cells of size h over some particles' bounding box;
+    // entries cell_start[c] .. cell_start[c + 1] are the particles in cell c.
+    struct Grid {
+        Vec<D> origin{0};
+        Cell cells{0};
+        std::vector<std::uint32_t> cell_start;
+    };
+    // Sorts the particles into the static grid; where each of `positions` went.
+    std::vector<std::uint32_t> build_grid(std::vector<Vec<D>> positions);
+    // Lays `grid` over the bounding box of `points` (not empty); the cell count.
+    std::size_t fit_grid(Grid& grid, std::span<const Vec<D>> points) const;
+    Cell cell_of(const Grid& grid, const Vec<D>& x) const;
+    static std::size_t cell_index(const Grid& grid, const Cell& c);
     template <class Visit>
     void for_each_near(const Vec<D>& x, Visit&& visit) const;
+    // The particles of `grid` near x; an entry e is particle e (the static
+    // grid) or moving_order_[e] (the moving one).
+    template <bool Moving, class Visit>
+    void for_each_in(const Grid& grid, const Vec<D>& x, Visit&& visit) const;
 
-    std::vector<Vec<D>> positions_; // sorted by cell
+    std::vector<Vec<D>> positions_; // static ones sorted by cell, then moving ones
     std::vector<Real> volumes_;     // m^3 (m^2 in 2D)
     Real h_ = 0;
-    // Dense grid of cells of size h over the particles' bounding box;
-    // cell_start_[c] .. cell_start_[c + 1] are the particles in cell c.
-    Vec<D> origin_{0};
-    Cell cells_{0};
-    std::vector<std::uint32_t> cell_start_;
+    Grid grid_; // the static particles, built once
+    // Moving particles: where they are at rest, their group, velocities
+    // (m/s), and their own grid, its entries indices into positions_.
+    std::size_t moving_begin_ = 0;
+    std::vector<Vec<D>> rest_;
+    std::vector<std::uint32_t> group_;
+    std::vector<Vec<D>> moving_velocities_;
+    Grid moving_grid_;
+    std::vector<std::uint32_t> moving_order_;
+    std::vector<std::size_t> moving_cell_;   // scratch of refresh_moving_grid()
+    std::vector<std::uint32_t> moving_next_; // scratch of refresh_moving_grid()
 };
 
 } // namespace sph

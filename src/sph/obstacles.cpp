@@ -1,6 +1,7 @@
 #include "sph/obstacles.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,6 +13,10 @@ template <int D>
 Real Obstacle<D>::signed_distance(const Vec<D>& x) const {
     if (shape == ObstacleShape::sphere)
         return std::sqrt(squared_length<D>(x - centre)) - radius;
+    if constexpr (D == 3)
+        if (shape == ObstacleShape::mesh)
+            return mesh->signed_distance(x);
+    assert(shape == ObstacleShape::box);
     // Box: minus the distance to the nearest face inside, the distance to the
     // box outside. From the faces themselves, not centre and half-size, so a
     // point on a face is at 0 exactly.
@@ -23,6 +28,21 @@ Real Obstacle<D>::signed_distance(const Vec<D>& x) const {
         deepest = std::max(deepest, q[a]);
     const Vec<D> outside = glm::max(q, Vec<D>(0));
     return std::sqrt(squared_length<D>(outside)) + std::min(deepest, Real(0));
+}
+
+template <int D>
+bool Obstacle<D>::nearer_than(const Vec<D>& x, Real d) const {
+    if constexpr (D == 3)
+        if (shape == ObstacleShape::mesh) {
+            // The distance to the bounding box is a lower bound of the distance
+            // to the mesh: most points never reach the triangles.
+            const Box<3>& b = mesh->bounds();
+            const Vec<3> gap = glm::max(glm::max(b.min - x, x - b.max), Vec<3>(0));
+            const Real outside = std::sqrt(squared_length<3>(gap));
+            if (outside > 0 && outside >= d)
+                return false;
+        }
+    return signed_distance(x) < d;
 }
 
 namespace {
@@ -124,6 +144,57 @@ void sample_sphere(const Vec<D>& centre, Real radius, Real spacing, std::int64_t
     }
 }
 
+// A closed mesh: the lattice of its bounding box, stretched to fit it as a
+// box's is, n_a = round(size / s) sites per axis; the sites inside the solid
+// and less than `layers` local spacings (the largest axis') from its surface
+// are kept. A cube therefore gets exactly a box's samples. The signed
+// distance changes by at most the distance moved (it is 1-Lipschitz), so
+// along a row the sites that are certainly outside, or deeper than the
+// shell, are stepped over without a query: the cost follows the surface,
+// not the volume.
+void sample_mesh(const TriangleMesh& mesh, Real spacing, std::int64_t layers, Real volume_scale,
+                 BoundarySamples<3>& out) {
+    const Box<3>& bounds = mesh.bounds();
+    glm::vec<3, std::int64_t, glm::defaultp> count;
+    Vec<3> step;
+    Real volume = volume_scale, largest = 0;
+    for (int a = 0; a < 3; ++a) {
+        const Real size = bounds.max[a] - bounds.min[a];
+        count[a] = std::max<std::int64_t>(1, std::llround(size / spacing));
+        step[a] = size / Real(count[a]);
+        volume *= step[a];
+        largest = std::max(largest, step[a]);
+    }
+    const Real depth = Real(layers) * largest;
+    // Rows along x, each kept in order; joined in row order, so the result
+    // does not depend on the thread count.
+    const std::int64_t rows = count[1] * count[2];
+    std::vector<std::vector<Vec<3>>> kept(static_cast<std::size_t>(rows));
+#pragma omp parallel for schedule(dynamic, 16)
+    for (std::int64_t row = 0; row < rows; ++row) {
+        Vec<3> x;
+        x[1] = bounds.min[1] + (Real(row % count[1]) + Real(0.5)) * step[1];
+        x[2] = bounds.min[2] + (Real(row / count[1]) + Real(0.5)) * step[2];
+        std::vector<Vec<3>>& own = kept[static_cast<std::size_t>(row)];
+        for (std::int64_t k = 0; k < count[0];) {
+            x[0] = bounds.min[0] + (Real(k) + Real(0.5)) * step[0];
+            const Real d = mesh.signed_distance(x);
+            if (d < 0 && d > -depth)
+                own.push_back(x);
+            // Sites nearer than `certain` along the row are outside (d > 0)
+            // or deeper than the shell; a hair less for rounding.
+            const Real certain = d >= 0 ? d : -d - depth;
+            k += 1 + std::max<std::int64_t>(
+                         0, static_cast<std::int64_t>(certain / step[0] * (1 - 1e-9)));
+        }
+    }
+    for (const auto& row : kept)
+        for (const Vec<3>& x : row) {
+            out.positions.push_back(x);
+            out.volumes.push_back(volume);
+        }
+}
+
 } // namespace
 
 template <int D>
@@ -138,12 +209,14 @@ BoundarySamples<D> sample_obstacles(std::span<const Obstacle<D>> obstacles, Real
         BoundarySamples<D> own;
         if (o.shape == ObstacleShape::box)
             sample_box(o.box, spacing, layers, volume_scale, own);
-        else
+        else if (o.shape == ObstacleShape::sphere)
             sample_sphere(o.centre, o.radius, spacing, layers, volume_scale, own);
+        else if constexpr (D == 3)
+            sample_mesh(*o.mesh, spacing, layers, volume_scale, own);
         for (std::size_t b = 0; b < own.positions.size(); ++b) {
             const bool inside_another =
                 std::any_of(obstacles.begin(), obstacles.end(), [&](const Obstacle<D>& other) {
-                    return &other != &o && other.signed_distance(own.positions[b]) < 0;
+                    return &other != &o && other.nearer_than(own.positions[b], 0);
                 });
             if (!inside_another) {
                 all.positions.push_back(own.positions[b]);
@@ -160,8 +233,65 @@ bool blocked_by_obstacle(std::span<const Obstacle<D>> obstacles, const Vec<D>& x
     // continues the obstacle's) despite rounding.
     const Real clearance = (Real(0.5) - Real(1e-6)) * spacing;
     return std::any_of(obstacles.begin(), obstacles.end(),
-                       [&](const Obstacle<D>& o) { return o.signed_distance(x) < clearance; });
+                       [&](const Obstacle<D>& o) { return o.nearer_than(x, clearance); });
 }
+
+namespace {
+
+// Puts x, found inside o, back on o's nearest surface; returns the outward
+// normal there.
+template <int D>
+Vec<D> put_on_surface(const Obstacle<D>& o, Vec<D>& x) {
+    Vec<D> normal(0);
+    if constexpr (D == 3)
+        if (o.shape == ObstacleShape::mesh) {
+            // Out to the closest point, along the direction to it (the
+            // distance's gradient: the face's normal on a face).
+            const TriangleMesh::Nearest near = o.mesh->nearest(x);
+            const Real depth = -near.distance;
+            normal = depth > 0 ? (near.point - x) / depth : near.normal;
+            x = near.point;
+            // Rounding can leave it a hair inside: out by a few ulps more.
+            const Box<3>& b = o.mesh->bounds();
+            const Real scale = glm::length(b.max - b.min) + glm::length(near.point);
+            for (Real hair = 1e-15 * scale; o.signed_distance(x) < 0; hair *= 2)
+                x = near.point + hair * normal;
+            return normal;
+        }
+    if (o.shape == ObstacleShape::sphere) {
+        const Real r = std::sqrt(squared_length<D>(x - o.centre));
+        normal[D - 1] = 1; // the centre itself: straight up
+        if (r > 0)
+            normal = (x - o.centre) / r;
+        x = o.centre + o.radius * normal;
+        // Rounding can leave it a hair inside: out by a few ulps more.
+        const Real scale = o.radius + std::sqrt(squared_length<D>(o.centre));
+        for (Real hair = 1e-15 * scale; o.signed_distance(x) < 0; hair *= 2)
+            x = o.centre + (o.radius + hair) * normal;
+        return normal;
+    }
+    // The face nearest inside; placed on it exactly, not by arithmetic that
+    // could round back inside.
+    int axis = 0;
+    Real nearest = std::numeric_limits<Real>::infinity();
+    for (int a = 0; a < D; ++a) {
+        const Real below = x[a] - o.box.min[a], above = o.box.max[a] - x[a];
+        if (below < nearest) {
+            nearest = below;
+            axis = -1 - a;
+        }
+        if (above < nearest) {
+            nearest = above;
+            axis = 1 + a;
+        }
+    }
+    const int a = std::abs(axis) - 1;
+    normal[a] = axis > 0 ? 1 : -1;
+    x[a] = axis > 0 ? o.box.max[a] : o.box.min[a];
+    return normal;
+}
+
+} // namespace
 
 template <int D>
 std::size_t push_out_of_obstacles(std::span<const Obstacle<D>> obstacles, State<D>& state) {
@@ -173,40 +303,9 @@ std::size_t push_out_of_obstacles(std::span<const Obstacle<D>> obstacles, State<
     for (std::size_t i = 0; i < n; ++i) {
         Vec<D>& x = state.position[i];
         for (const Obstacle<D>& o : obstacles) {
-            if (!(o.signed_distance(x) < 0))
+            if (!o.nearer_than(x, 0))
                 continue;
-            // The outward normal of the nearest surface, and the point on it.
-            Vec<D> normal(0);
-            if (o.shape == ObstacleShape::sphere) {
-                const Real r = std::sqrt(squared_length<D>(x - o.centre));
-                normal[D - 1] = 1; // the centre itself: straight up
-                if (r > 0)
-                    normal = (x - o.centre) / r;
-                x = o.centre + o.radius * normal;
-                // Rounding can leave it a hair inside: out by a few ulps more.
-                const Real scale = o.radius + std::sqrt(squared_length<D>(o.centre));
-                for (Real hair = 1e-15 * scale; o.signed_distance(x) < 0; hair *= 2)
-                    x = o.centre + (o.radius + hair) * normal;
-            } else {
-                // The face nearest inside; placed on it exactly, not by
-                // arithmetic that could round back inside.
-                int axis = 0;
-                Real nearest = std::numeric_limits<Real>::infinity();
-                for (int a = 0; a < D; ++a) {
-                    const Real below = x[a] - o.box.min[a], above = o.box.max[a] - x[a];
-                    if (below < nearest) {
-                        nearest = below;
-                        axis = -1 - a;
-                    }
-                    if (above < nearest) {
-                        nearest = above;
-                        axis = 1 + a;
-                    }
-                }
-                const int a = std::abs(axis) - 1;
-                normal[a] = axis > 0 ? 1 : -1;
-                x[a] = axis > 0 ? o.box.max[a] : o.box.min[a];
-            }
+            const Vec<D> normal = put_on_surface(o, x);
             Vec<D>& v = state.velocity[i];
             const Real inward = glm::dot(v, normal);
             if (inward < 0)

@@ -1,6 +1,7 @@
 #pragma once
 // Static obstacles the fluid flows around (the scene's effects.obstacles):
-// boxes and spheres (circles in 2D) made of boundary particles, after Akinci
+// boxes, spheres (circles in 2D) and, in 3D, closed triangle meshes
+// (triangle_mesh.hpp), made of boundary particles, after Akinci
 // et al. 2012, "Versatile rigid-fluid coupling for incompressible SPH". Each
 // obstacle's solid is sampled on the fluid's spacing in a shell as deep as
 // the kernel reaches, ceil(h / spacing) layers inside its surface, as the
@@ -9,15 +10,17 @@
 // BoundaryParticles set the solvers already use for density and pressure.
 
 #include "sph/state.hpp"
+#include "sph/triangle_mesh.hpp"
 #include "sph/vec.hpp"
 
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace sph {
 
-enum class ObstacleShape { box, sphere };
+enum class ObstacleShape { box, sphere, mesh };
 
 template <int D>
 struct Obstacle {
@@ -25,9 +28,15 @@ struct Obstacle {
     Box<D> box;       // m, the box's corners
     Vec<D> centre{0}; // m, the sphere's
     Real radius = 0;  // m, the sphere's
+    // The mesh's solid, in scene coordinates (3D only); shared, it is never
+    // changed once built.
+    std::shared_ptr<const TriangleMesh> mesh;
 
     // Distance to the surface, negative inside.
     Real signed_distance(const Vec<D>& x) const;
+    // signed_distance(x) < d, without searching a mesh when x is at least d
+    // outside its bounding box.
+    bool nearer_than(const Vec<D>& x, Real d) const;
 };
 
 // Boundary particles and the volume each stands for (m^3, m^2 in 2D).

@@ -4,6 +4,7 @@
 
 #include "sph/kernels.hpp"
 #include "sph/obstacles.hpp"
+#include "sph/paddles.hpp"
 #include "sph/vec.hpp"
 
 #include <cmath>
@@ -53,11 +54,12 @@ struct Params {
     Real spacing = 0;              // m, rest distance between particles
     Real rest_density = 0;         // kg/m^3
     Real bulk_modulus = 0;         // Pa, K in p = K (rho - rho0)
-    Real viscosity = 0;            // Pa.s, dynamic viscosity mu
-    Real artificial_viscosity = 0; // alpha of Monaghan's artificial viscosity (wcsph)
+    Real viscosity = 0;            // Pa.s, mu of the viscosity effect (0: none), for the time step
     Box<D> domain;                 // m, the walls
     // Static solids inside the domain, made of boundary particles (obstacles.hpp).
     std::vector<Obstacle<D>> obstacles;
+    // Boxes that move with a prescribed motion, made of boundary particles (paddles.hpp).
+    std::vector<Paddle<D>> paddles;
     KernelKind kernel = KernelKind::seed;
     Integrator integrator = Integrator::symplectic_euler;
     WallModel walls = WallModel::reflect;

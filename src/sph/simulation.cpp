@@ -28,6 +28,22 @@ std::optional<BoundaryParticles<D>> make_boundary(const Params<D>& p) {
     return BoundaryParticles<D>(std::move(samples.positions), std::move(samples.volumes), p.h);
 }
 
+// The paddles' shells join the set as its moving particles, after the static
+// ones (a set of their own when there are no static ones).
+template <int D>
+std::optional<BoundaryParticles<D>> add_paddles(const Params<D>& p,
+                                                std::optional<BoundaryParticles<D>> boundary) {
+    if (p.paddles.empty())
+        return boundary;
+    if (!boundary)
+        boundary.emplace(std::vector<Vec<D>>{}, std::vector<Real>{}, p.h);
+    PaddleSamples<D> samples =
+        sample_paddles<D>(p.paddles, p.spacing, p.h, p.mass / p.rest_density);
+    boundary->add_moving(std::move(samples.positions), std::move(samples.volumes),
+                         std::move(samples.paddle));
+    return boundary;
+}
+
 } // namespace
 
 template <int D>
@@ -35,7 +51,8 @@ Simulation<D>::Simulation(const Params<D>& params, State<D> initial,
                           std::unique_ptr<Solver<D>> solver,
                           std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects)
     : params_(params), state_(std::move(initial)), solver_(std::move(solver)),
-      search_(std::move(search)), effects_(std::move(effects)), boundary_(make_boundary(params_)) {}
+      search_(std::move(search)), effects_(std::move(effects)),
+      boundary_(add_paddles(params_, make_boundary(params_))) {}
 
 template <int D>
 Real Simulation<D>::next_dt() const {
@@ -47,6 +64,9 @@ Real Simulation<D>::next_dt() const {
         rates.max_acceleration = std::max(rates.max_acceleration, effect->body_acceleration());
         rates.max_speed = std::max(rates.max_speed, effect->speed());
     }
+    // A paddle moves the fluid beside it as fast as it goes itself.
+    for (const Paddle<D>& paddle : params_.paddles)
+        rates.max_speed = std::max(rates.max_speed, paddle.peak_speed());
     return stable_time_step(params_, solver_->time_step_model(), rates);
 }
 
@@ -54,6 +74,10 @@ template <int D>
 std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
     for (int k = 0; k < count; ++k) {
         auto ctx = context();
+        ctx.dt = dt;
+        ctx.start_time = time_ + Real(k) * dt;
+        // The paddles where they are when the step starts.
+        ctx.place_paddles(params_, ctx.start_time);
         const StepReport report = solver_->step(params_, dt, state_, ctx);
         ++steps_;
         ++counters_.steps;
@@ -145,6 +169,7 @@ void Simulation<D>::advance_to(Real t) {
 template <int D>
 void Simulation<D>::update_fields() {
     auto ctx = context();
+    ctx.place_paddles(params_, time_);
     solver_->update_fields(params_, state_, ctx);
 }
 

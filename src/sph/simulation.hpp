@@ -34,7 +34,8 @@ class Simulation {
     bool reached(Real t) const;
     // Steps until reached(t).
     void advance_to(Real t);
-    // Density and pressure at the current positions, for output.
+    // Density and pressure at the current positions, for output; the
+    // paddles' particles are placed at time() first.
     void update_fields();
     // The step the stability conditions allow now (the fixed one if fixed).
     Real next_dt() const;
@@ -49,7 +50,8 @@ class Simulation {
     // Neighbours as the last step or update_fields() found them.
     const NeighbourList& neighbours() const { return neighbours_; }
     const EffectList<D>& effects() const { return effects_; }
-    // Null when the walls reflect and there is no obstacle.
+    // Null when the walls reflect and there is no obstacle or paddle. The
+    // paddles' particles are where the last step (or update_fields()) put them.
     const BoundaryParticles<D>* boundary() const { return boundary_ ? &*boundary_ : nullptr; }
     Real time() const { return time_; }
     // Time per stage since the start, and the particle-steps it was spent on
@@ -60,7 +62,12 @@ class Simulation {
 
   private:
     StepContext<D> context() {
-        return {*search_, neighbours_, boundary(), boundary_neighbours_, effects_, &stages_};
+        StepContext<D> ctx{*search_, neighbours_, boundary(), boundary_neighbours_,
+                           effects_, &stages_};
+        ctx.start_time = time_;
+        if (boundary_ && boundary_->has_moving())
+            ctx.moving_boundary = &*boundary_;
+        return ctx;
     }
     // Advances by dt under the watchdog (see step()).
     void step_by(Real dt);

@@ -51,30 +51,29 @@ int main(int argc, char** argv) {
                                      {"material.viscosity", "0"},
                                      {"solver.artificial_viscosity", "0"},
                                      {"effects", "{}"}};
+    // Each configuration adds one effect to the one before (the seed's
+    // viscosity row swaps Morris's model for the seed's instead).
     const std::string gravity = R"("gravity": [0, -9.81])";
+    const std::string artificial = gravity + R"(, "artificial_viscosity": {"alpha": 0.02})";
+    const std::string morris = artificial + R"(, "viscosity": {"model": "morris", "mu": 1})";
+    const std::string seed = artificial + R"(, "viscosity": {"model": "seed", "mu": 1})";
+    const std::string xsph = morris + R"(, "xsph": {"epsilon": 0.5})";
+    const std::string tension = xsph + R"(, "surface_tension": {"gamma": 1})";
+    const std::string emitter =
+        tension +
+        R"(, "emitters": [{"min": [0.3, 0.15], "max": [0.306, 0.19], "velocity": [-1, 0]}])";
+    auto effects = [](const std::string& list) {
+        return std::vector<Override>{{"effects", "{" + list + "}"}};
+    };
     const std::vector<Config> configs{
         {"pressure only (no effects, no viscosity)", "", {}},
-        {"+ gravity", "gravity", {{"effects", "{" + gravity + "}"}}},
-        {"+ artificial viscosity (alpha 0.02)",
-         "viscosity",
-         {{"effects", "{" + gravity + "}"}, {"solver.artificial_viscosity", "0.02"}}},
-        {"+ laminar viscosity (Morris, 1 Pa.s)",
-         "viscosity",
-         {{"effects", "{" + gravity + "}"},
-          {"solver.artificial_viscosity", "0.02"},
-          {"material.viscosity", "1"}}},
-        {"+ surface tension (gamma 1)",
-         "surface_tension",
-         {{"effects", "{" + gravity + R"(, "surface_tension": {"gamma": 1}})"},
-          {"solver.artificial_viscosity", "0.02"},
-          {"material.viscosity", "1"}}},
-        {"+ emitter (10 particles / 4 ms)",
-         "emitters",
-         {{"effects",
-           "{" + gravity +
-               R"(, "surface_tension": {"gamma": 1}, "emitters": [{"min": [0.3, 0.15], "max": [0.306, 0.19], "velocity": [-1, 0]}]})"},
-          {"solver.artificial_viscosity", "0.02"},
-          {"material.viscosity", "1"}}},
+        {"+ gravity", "gravity", effects(gravity)},
+        {"+ artificial viscosity (alpha 0.02)", "artificial_viscosity", effects(artificial)},
+        {"+ laminar viscosity (Morris, 1 Pa.s)", "viscosity", effects(morris)},
+        {"  (the seed's viscosity instead of Morris's)", "viscosity", effects(seed)},
+        {"+ XSPH (epsilon 0.5)", "xsph", effects(xsph)},
+        {"+ surface tension (gamma 1)", "surface_tension", effects(tension)},
+        {"+ emitter (10 particles / 4 ms)", "emitters", effects(emitter)},
     };
     fmt::print("effects benchmark: built-in 2D dam break, wcsph, spacing {} m, dt 1e-4 s, {} "
                "steps, {} threads\n\n",

@@ -3,6 +3,7 @@
 // built once from the scene: an effect the scene does not name is not in the
 // list, allocates nothing and costs nothing per step.
 
+#include "sph/boundary_particles.hpp"
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"
@@ -13,6 +14,18 @@
 
 namespace sph {
 
+// What an effect reads besides the particles: the neighbour lists the
+// solver built for this step, the wall, obstacle and paddle particles (null
+// when the walls reflect and there are no obstacles or paddles), and the
+// step's length.
+template <int D>
+struct EffectInputs {
+    const NeighbourList& neighbours;
+    const BoundaryParticles<D>* boundary;
+    const NeighbourList& boundary_neighbours; // fluid -> boundary particles
+    Real dt;                                  // s
+};
+
 template <int D>
 class Effect {
   public:
@@ -21,8 +34,7 @@ class Effect {
     virtual std::string_view name() const = 0;
     // Adds this effect's acceleration to state.acceleration.
     // Not const: an effect may keep per-particle arrays of its own.
-    virtual void apply(const Params<D>& params, const NeighbourList& neighbours,
-                       State<D>& state) = 0;
+    virtual void apply(const Params<D>& params, const EffectInputs<D>& in, State<D>& state) = 0;
     // The magnitude of a uniform acceleration it gives every particle (0 if
     // none), known before any step: the time step's force condition needs
     // it on the first step, before any acceleration has been computed.

@@ -10,7 +10,7 @@ class Gravity final : public Effect<D> {
   public:
     explicit Gravity(const Vec<D>& g) : g_(g) {}
     std::string_view name() const override { return "gravity"; }
-    void apply(const Params<D>&, const NeighbourList&, State<D>& state) override {
+    void apply(const Params<D>&, const EffectInputs<D>&, State<D>& state) override {
         const std::size_t n = state.size();
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i)

@@ -48,7 +48,8 @@ class SurfaceTension final : public Effect<D> {
     std::string_view name() const override { return "surface_tension"; }
     Real coefficient() const { return gamma_; }
 
-    void apply(const Params<D>& params, const NeighbourList& neighbours, State<D>& state) override {
+    void apply(const Params<D>& params, const EffectInputs<D>& in, State<D>& state) override {
+        const NeighbourList& neighbours = in.neighbours;
         with_kernel<D>(params.kernel, params.h, [&](const auto& kernel) {
             compute_normals(params, kernel, neighbours, state);
         });

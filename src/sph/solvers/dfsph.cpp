@@ -3,16 +3,18 @@
 #include "sph/boundary.hpp"
 #include "sph/integrate.hpp"
 #include "sph/obstacles.hpp"
+#include "sph/paddles.hpp"
 #include "sph/pair_direction.hpp"
 #include "sph/solvers/density_with_walls.hpp"
-#include "sph/viscosity.hpp"
 
 #include <algorithm>
 #include <optional>
 
 // Notation. With g_ij = m grad W_ij (fluid pairs) and w_ib = rho0 V_b grad W_ib
 // (wall pairs), the rate of compression is
-//   D rho_i / Dt = sum_j g_ij . (v_i - v_j) + sum_b w_ib . v_i
+//   D rho_i / Dt = sum_j g_ij . (v_i - v_j) + sum_b w_ib . (v_i - v_b)
+// (v_b = 0 but on a paddle, sph/paddles.hpp; Bender & Koschier 2017, eq. 9's
+// source with Akinci's boundary term, as SPlisHSPlasH's TimeStepDFSPH)
 // and a velocity correction with per-particle stiffness s
 //   dv_i = - sum_j (s_i + s_j) g_ij - sum_b s_i w_ib
 // is the symmetric pressure force with p_i / rho_i^2 = s_i / dt. Taking every
@@ -43,6 +45,9 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
     source_.resize(n);
     gradient_.resize(context.neighbours.pair_count());
     wall_gradient_.resize(context.boundary ? context.boundary_neighbours.pair_count() : 0);
+    // Moving walls: sum_b w_ib . v_b, fixed for the step (v_b is).
+    const bool moving = context.boundary && context.boundary->has_moving();
+    wall_motion_.resize(moving ? n : 0);
     // No particle is compressed below a fraction of this: with S_i under it
     // (an isolated particle) there is nothing to push against.
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
@@ -72,6 +77,13 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
                     params.rest_density * volume[b] * boundary_gradient(kernel, x_ib, r);
                 wall_gradient_[e] = w;
                 walls_sum += w;
+            }
+            if (moving) {
+                Real motion = 0;
+                for (std::uint32_t e = walls.start[i]; e < walls.start[i + 1]; ++e)
+                    motion +=
+                        glm::dot(wall_gradient_[e], context.boundary->velocity(walls.index[e]));
+                wall_motion_[i] = motion;
             }
         }
         // The walls push with twice the particle's stiffness (pressure
@@ -135,6 +147,8 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
             if (walls)
                 for (std::uint32_t e = walls->start[i]; e < walls->start[i + 1]; ++e)
                     rate += glm::dot(wall_gradient_[e], state.velocity[i]);
+            if (!wall_motion_.empty())
+                rate -= wall_motion_[i];
             source_[i] = target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
         }
         // The residual of a pressure that must stay >= 0: compression
@@ -220,14 +234,9 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
             auto timed = context.time("divergence solve");
             report.divergence_iterations = solve(params, dt, Target::divergence, context, state);
         }
-        // 3. Non-pressure forces: viscosity and the scene's effects; v* = v + dt a.
-        std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
-        if (params.viscosity > 0) {
-            auto timed = context.time("viscosity");
-            add_laminar_viscosity(params, kernel, context.neighbours, context.boundary,
-                                  context.boundary_neighbours, state);
-        }
     });
+    // 3. Non-pressure forces, the scene's effects (viscosity, gravity, ...); v* = v + dt a.
+    std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
     context.apply_effects(params, state);
     {
         auto timed = context.time("integration");
@@ -252,6 +261,8 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     auto timed = context.time("boundary");
     reflect_at_box(params, state);
     report.obstacle_pushes = push_out_of_obstacles<D>(params.obstacles, state);
+    report.obstacle_pushes +=
+        push_out_of_paddles<D>(params.paddles, context.start_time + dt, state);
     return report;
 }
 

@@ -11,8 +11,8 @@
 // factor alpha_i = 1 / (|sum_j m grad W_ij|^2 + sum_j |m grad W_ij|^2)
 // (Bender & Koschier 2017, eq. 9, with the density folded in). Walls are
 // boundary particles (Akinci et al. 2012) that contribute to rho and to
-// D rho / Dt, never move, and push back with the fluid particle's own
-// stiffness.
+// D rho / Dt (with their velocity, when a paddle moves them), and push back
+// with the fluid particle's own stiffness.
 
 #include "sph/solvers/solver.hpp"
 
@@ -57,6 +57,7 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Vec<D>> velocity_at_start_; // to restart a diverging solve
     std::vector<Vec<D>> gradient_;          // m grad W_ij per fluid pair (neighbour list order)
     std::vector<Vec<D>> wall_gradient_;     // rho0 V_b grad W_ib per wall pair
+    std::vector<Real> wall_motion_;         // sum_b w_ib . v_b; empty when no wall moves
 };
 
 } // namespace sph

@@ -10,6 +10,7 @@
 #include "sph/boundary.hpp"
 #include "sph/integrate.hpp"
 #include "sph/obstacles.hpp"
+#include "sph/paddles.hpp"
 #include "sph/solvers/solver.hpp"
 
 namespace sph {
@@ -30,7 +31,9 @@ class ExplicitSolver : public Solver<D> {
                 kick(dt / 2, state);
                 drift(dt, state);
             }
-            report.obstacle_pushes = reflect(params, state, context);
+            report.obstacle_pushes = reflect(params, dt, state, context);
+            // The forces at the new positions see the paddles where they are then.
+            context.place_paddles(params, context.start_time + dt);
             compute_accelerations(params, state, context);
             auto timed = context.time("integration");
             kick(dt / 2, state);
@@ -42,7 +45,7 @@ class ExplicitSolver : public Solver<D> {
                 auto timed = context.time("integration");
                 integrate_symplectic_euler(dt, state);
             }
-            report.obstacle_pushes = reflect(params, state, context);
+            report.obstacle_pushes = reflect(params, dt, state, context);
         }
         return report;
     }
@@ -53,13 +56,15 @@ class ExplicitSolver : public Solver<D> {
                                        StepContext<D>& context) = 0;
 
   private:
-    // The last guards: the reflecting box, then the obstacles' surfaces.
-    // Returns the particles put back out of obstacles.
-    static std::uint64_t reflect(const Params<D>& params, State<D>& state,
+    // The last guards: the reflecting box, then the obstacles' surfaces and
+    // the paddles' at the step's end. Returns the particles put back out of
+    // obstacles and paddles.
+    static std::uint64_t reflect(const Params<D>& params, Real dt, State<D>& state,
                                  StepContext<D>& context) {
         auto timed = context.time("boundary");
         reflect_at_box(params, state);
-        return push_out_of_obstacles<D>(params.obstacles, state);
+        const std::uint64_t pushed = push_out_of_obstacles<D>(params.obstacles, state);
+        return pushed + push_out_of_paddles<D>(params.paddles, context.start_time + dt, state);
     }
 
     bool accelerations_current_ = false;

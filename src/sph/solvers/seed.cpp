@@ -1,6 +1,7 @@
 #include "sph/solvers/seed.hpp"
 
 #include "sph/density.hpp"
+#include "sph/effects/seed_viscosity.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/kernels.hpp"
 #include "sph/pair_direction.hpp"
@@ -25,11 +26,12 @@ void SeedSolver<D>::compute_accelerations(const Params<D>& params, State<D>& sta
             compute_density(params, kernel, context.neighbours, state);
             compute_pressure_linear(params, state);
         }
-        // 3. Pressure and viscosity together, the seed's pair force f_ij, a = f / rho.
-        auto timed = context.time("pressure and viscosity");
-        compute_seed_interaction(params, kernel, context.neighbours, state);
+        // 3. The pressure half of the seed's pair force f_ij, a = f / rho.
+        auto timed = context.time("pressure");
+        compute_seed_pressure(params, kernel, context.neighbours, state);
     });
-    // 4. Body forces and other effects the scene names (gravity, ...).
+    // 4. Its viscous half (effects/seed_viscosity.hpp), gravity and the other
+    // effects the scene names.
     context.apply_effects(params, state);
 }
 
@@ -55,6 +57,9 @@ void SeedSolver<D>::update_fields(const Params<D>& params, State<D>& state,
 //   m/(pi h^5 rho_j) (1-q) [45/2 K' (rho_i + rho_j - 2 rho0) (1-q)/q r_ij - 45 mu v_ij].
 // The seed's 1/q only stands for the direction r_ij / r; at r = 0 the
 // magnitude is finite and coincident_direction() supplies the direction.
+// The solver computes the pressure half here; the viscous half is the
+// `viscosity` effect with model "seed" (effects/seed_viscosity.hpp), so a
+// scene without viscosity does not pay for it.
 //
 // The acceleration it gives i, f_ij / rho_i = m / (rho_i rho_j) [...], is
 // symmetric in i and j but for the sign of r_ij and v_ij: this is why the seed
@@ -63,26 +68,21 @@ void SeedSolver<D>::update_fields(const Params<D>& params, State<D>& state,
 // exact negatives of each other.
 namespace {
 
-// The pair term with its kernels built once per stage, not once per pair.
+// The pressure term with its kernel built once per stage, not once per pair.
 // Another kernel than the seed's replaces spiky's gradient by its own.
 template <int D, class Kernel>
-struct SeedPairTerm {
+struct SeedPressureTerm {
     const Params<D>& params;
     const Kernel& kernel;
-    ViscosityLaplacian<D> viscosity;
-
-    SeedPairTerm(const Params<D>& p, const Kernel& k) : params(p), kernel(k), viscosity(p.h) {}
 
     Vec<D> operator()(const State<D>& state, std::size_t i, std::size_t j) const {
         const Vec<D> r_ij = state.position[i] - state.position[j];
         const Real r = std::sqrt(squared_length<D>(r_ij));
         const Vec<D> direction = pair_direction(state, i, j, r_ij, r, params.h);
         const Real mean_pressure = Real(0.5) * (state.pressure[i] + state.pressure[j]);
-        const Vec<D> pressure_term = -mean_pressure * kernel.dW(r) * direction;
-        const Vec<D> viscous_term =
-            -params.viscosity * viscosity.laplacian(r) * (state.velocity[i] - state.velocity[j]);
-        return (params.mass / (state.density[i] * state.density[j])) *
-               (pressure_term + viscous_term);
+        return (-params.mass * mean_pressure * kernel.dW(r) /
+                (state.density[i] * state.density[j])) *
+               direction;
     }
 };
 
@@ -92,7 +92,9 @@ template <int D>
 Vec<D> seed_pair_acceleration(const Params<D>& params, const State<D>& state, std::size_t i,
                               std::size_t j) {
     const SeedKernel<D> kernel(params.h);
-    return SeedPairTerm<D, SeedKernel<D>>(params, kernel)(state, i, j);
+    return SeedPressureTerm<D, SeedKernel<D>>{params, kernel}(state, i, j) +
+           seed_viscous_acceleration(params, ViscosityLaplacian<D>(params.h), params.viscosity,
+                                     state, i, j);
 }
 
 template <int D>
@@ -105,10 +107,10 @@ Vec<D> seed_pair_force(const Params<D>& params, const State<D>& state, std::size
 // never write to the same particle and the sum is the same for any thread
 // count; the seed's once-per-pair evaluation gives the same values.
 template <int D, class Kernel>
-void compute_seed_interaction(const Params<D>& params, const Kernel& kernel,
-                              const NeighbourList& neighbours, State<D>& state) {
+void compute_seed_pressure(const Params<D>& params, const Kernel& kernel,
+                           const NeighbourList& neighbours, State<D>& state) {
     const std::size_t n = state.size();
-    const SeedPairTerm<D, Kernel> term(params, kernel);
+    const SeedPressureTerm<D, Kernel> term{params, kernel};
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         Vec<D> acceleration(0);
@@ -123,7 +125,9 @@ template class SeedSolver<3>;
 template <int D>
 void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
                               State<D>& state) {
-    compute_seed_interaction(params, SeedKernel<D>(params.h), neighbours, state);
+    compute_seed_pressure(params, SeedKernel<D>(params.h), neighbours, state);
+    const NeighbourList no_walls;
+    SeedViscosity<D>(params.viscosity).apply(params, {neighbours, nullptr, no_walls, 0}, state);
 }
 
 template void compute_seed_interaction<2>(const Params<2>&, const NeighbourList&, State<2>&);

@@ -5,6 +5,7 @@
 #include "sph/boundary_particles.hpp"
 #include "sph/effects/effect.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
+#include "sph/paddles.hpp"
 #include "sph/stage_times.hpp"
 #include "sph/time_step.hpp"
 
@@ -27,6 +28,20 @@ struct StepContext {
     NeighbourList& boundary_neighbours;   // fluid -> boundary particles
     const EffectList<D>& effects;
     StageTimes* stages = nullptr; // where stage times go; null: not timed
+    Real dt = 0;                  // s, the step being taken (XSPH reads it)
+    Real start_time = 0;          // s, when the step starts (paddles move with it)
+    // The boundary set again, writable, when it holds paddles; null when
+    // nothing in it moves.
+    BoundaryParticles<D>* moving_boundary = nullptr;
+
+    // Moves the paddles' boundary particles to where their motions have them
+    // at time t, with their velocities (sph/paddles.hpp).
+    void place_paddles(const Params<D>& params, Real t) {
+        if (!moving_boundary)
+            return;
+        auto timed = time("paddles");
+        move_paddles<D>(params.paddles, t, *moving_boundary);
+    }
 
     // Times the stage that lives as long as the returned scope.
     StageTimes::Scope time(std::string_view stage) { return {stages, stage}; }
@@ -47,7 +62,7 @@ struct StepContext {
     void apply_effects(const Params<D>& params, State<D>& state) {
         for (const auto& effect : effects) {
             auto timed = time(effect->name());
-            effect->apply(params, neighbours, state);
+            effect->apply(params, {neighbours, boundary, boundary_neighbours, dt}, state);
         }
     }
 };

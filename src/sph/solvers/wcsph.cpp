@@ -3,7 +3,6 @@
 #include "sph/equation_of_state.hpp"
 #include "sph/pressure_acceleration.hpp"
 #include "sph/solvers/density_with_walls.hpp"
-#include "sph/viscosity.hpp"
 
 namespace sph {
 
@@ -27,21 +26,12 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
         // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
         density_and_pressure(params, kernel, context, state);
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2) grad W, walls included.
-        {
-            auto timed = context.time("pressure");
-            compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
-                                          context.boundary_neighbours, state);
-        }
-        // 3. Viscosity: Monaghan's artificial term, and the fluid's own (Morris).
-        auto timed = context.time("viscosity");
-        if (params.artificial_viscosity > 0)
-            add_artificial_viscosity(params, kernel, context.neighbours, context.boundary,
-                                     context.boundary_neighbours, state);
-        if (params.viscosity > 0)
-            add_laminar_viscosity(params, kernel, context.neighbours, context.boundary,
-                                  context.boundary_neighbours, state);
+        auto timed = context.time("pressure");
+        compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
+                                      context.boundary_neighbours, state);
     });
-    // 4. Body forces and other effects the scene names.
+    // 3. The effects the scene names: viscosity (Morris), Monaghan's
+    // artificial viscosity, gravity, ...
     context.apply_effects(params, state);
 }
 

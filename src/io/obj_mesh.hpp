@@ -1,0 +1,26 @@
+#pragma once
+// Closed triangle meshes from Wavefront OBJ files (3D mesh obstacles), read
+// with tinyobjloader (Debian libtinyobjloader-dev): `v` vertices and `f`
+// faces, polygons split into triangles; normals, texture coordinates,
+// groups and materials are ignored, and `mtllib` is not followed (the text
+// is parsed from memory), so reading a mesh opens no other file.
+
+#include "sph/triangle_mesh.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace sph {
+
+// The mesh in `path`, each vertex moved to scale * v + offset, checked to
+// be a solid (closed, manifold, consistently oriented, no degenerate face:
+// mesh_solid_problem). Vertices repeated at exactly the same position are
+// joined first, as some exporters repeat them. Throws InputError(scene_file,
+// field, why) naming the OBJ file.
+std::shared_ptr<const TriangleMesh> read_obj_mesh(const std::filesystem::path& path, Real scale,
+                                                  const Vec<3>& offset,
+                                                  const std::string& scene_file,
+                                                  const std::string& field);
+
+} // namespace sph

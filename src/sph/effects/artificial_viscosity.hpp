@@ -1,0 +1,80 @@
+#pragma once
+// Monaghan's artificial viscosity (Monaghan 1992, eq. 4.1, without the
+// quadratic beta term), acting only between approaching particles:
+//   Pi_ij = -(2 alpha h c / (rho_i + rho_j)) (v_ij . x_ij) / (r^2 + 0.01 h^2)  if v_ij . x_ij < 0
+//   a_i -= sum_j m Pi_ij grad W_ij
+// with h the support radius and c the sound speed. It damps the noise a
+// weakly compressible fluid rings with, at the price of some extra
+// dissipation. The scene's `effects.artificial_viscosity` (and the older
+// `solver.artificial_viscosity`, on by default for wcsph).
+
+#include "sph/effects/effect.hpp"
+#include "sph/kernels.hpp"
+
+#include <cmath>
+
+namespace sph {
+
+template <int D>
+class ArtificialViscosity final : public Effect<D> {
+  public:
+    explicit ArtificialViscosity(Real alpha) : alpha_(alpha) {}
+    std::string_view name() const override { return "artificial_viscosity"; }
+    Real alpha() const { return alpha_; }
+
+    void apply(const Params<D>& params, const EffectInputs<D>& in, State<D>& state) override {
+        with_kernel<D>(params.kernel, params.h,
+                       [&](const auto& kernel) { add(params, kernel, in, state); });
+    }
+
+  private:
+    template <class Kernel>
+    void add(const Params<D>& params, const Kernel& kernel, const EffectInputs<D>& in,
+             State<D>& state) const {
+        const std::size_t n = state.size();
+        const Real eps = Real(0.01) * params.h * params.h;
+        const Real nu_scale = 2 * alpha_ * params.h * params.sound_speed();
+#pragma omp parallel for schedule(dynamic, 256)
+        for (std::size_t i = 0; i < n; ++i) {
+            Vec<D> a(0);
+            for (std::uint32_t j : in.neighbours.of(i)) {
+                const Vec<D> x_ij = state.position[i] - state.position[j];
+                const Real v_dot_x = glm::dot(state.velocity[i] - state.velocity[j], x_ij);
+                if (v_dot_x >= 0)
+                    continue;
+                const Real r2 = squared_length<D>(x_ij);
+                const Real r = std::sqrt(r2);
+                const Real Pi =
+                    -nu_scale / (state.density[i] + state.density[j]) * v_dot_x / (r2 + eps);
+                // grad W = (dW/dr / r) x_ij; at r = 0 v_dot_x is 0 and we never get here.
+                a -= (params.mass * Pi * kernel.dW(r) / r) * x_ij;
+            }
+            // The walls too (as Akinci et al. 2012 do): a wall particle is
+            // fluid with the particle's density, mass rho0 V_b and its own
+            // velocity (0 but on a paddle, sph/paddles.hpp).
+            // Without it a particle that comes close to a wall, where the
+            // smooth kernels' gradients fade, meets no damping and squirts
+            // along it.
+            if (in.boundary) {
+                const auto xb = in.boundary->positions();
+                const auto volume = in.boundary->volumes();
+                for (std::uint32_t b : in.boundary_neighbours.of(i)) {
+                    const Vec<D> x_ib = state.position[i] - xb[b];
+                    const Real v_dot_x =
+                        glm::dot(state.velocity[i] - in.boundary->velocity(b), x_ib);
+                    if (v_dot_x >= 0)
+                        continue;
+                    const Real r2 = squared_length<D>(x_ib);
+                    const Real r = std::sqrt(r2);
+                    const Real Pi = -nu_scale / (2 * state.density[i]) * v_dot_x / (r2 + eps);
+                    a -= (params.rest_density * volume[b] * Pi * kernel.dW(r) / r) * x_ib;
+                }
+            }
+            state.acceleration[i] += a;
+        }
+    }
+
+    Real alpha_;
+};
+
+} // namespace sph

@@ -452,6 +452,38 @@ TEST_CASE("one thread and two threads write the same data", "[cli]") {
         CHECK(read_text(one / "particles" / frame) == read_text(two / "particles" / frame));
 }
 
+TEST_CASE("outputs choose the fields computed for them, and change no bit of the run",
+          "[cli][fields]") {
+    TempFolder tmp;
+    // dfsph's pressure is an output only: computed for the export, not
+    // without it; the simulation is the same either way.
+    const fs::path scene = write_scene(tmp, R"({
+        "domain": {"min": [0, 0], "max": [0.2, 0.2]},
+        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.1, 0.1]}]},
+        "solver": {"name": "dfsph"},
+        "duration": 0.05,
+        "fps": 40
+    })");
+    const auto bare = run_scene(tmp, scene, tmp / "bare", {});
+    const auto exported = run_scene(tmp, scene, tmp / "exported", {"--export", "csv"});
+    INFO(bare.output << exported.output);
+    REQUIRE(bare.exit_code == 0);
+    REQUIRE(exported.exit_code == 0);
+    CHECK(json::parse(read_text(tmp / "bare" / "run.json")).at("output_fields").at("pressure") ==
+          false);
+    CHECK(json::parse(read_text(tmp / "exported" / "run.json"))
+              .at("output_fields")
+              .at("pressure") == true);
+    CHECK(stats_without_wall_time(tmp / "bare" / "stats.csv") ==
+          stats_without_wall_time(tmp / "exported" / "stats.csv"));
+    // The exported pressure is the solve's: positive at the bottom of the block.
+    const Csv last = read_csv(tmp / "exported" / "particles" / "frame_00002.csv");
+    double highest = 0;
+    for (std::size_t i = 0; i < last.rows.size(); ++i)
+        highest = std::max(highest, last.number(i, "pressure"));
+    CHECK(highest > 100);
+}
+
 namespace {
 // A time step far above the viscous limit (0.125 h^2 rho0 / mu, about 2e-9 s
 // here): explicit viscosity amplifies the velocities every step until they

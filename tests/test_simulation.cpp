@@ -327,3 +327,36 @@ TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][
           Names{"boundary", "density", "divergence solve", "gravity", "integration",
                 "neighbour search", "pressure solve", "time step", "watchdog"});
 }
+
+TEST_CASE("a field no output reads is not computed, and the run is the same", "[simulation][fields]") {
+    for (const char* solver : {"seed", "wcsph", "dfsph"}) {
+        INFO(solver);
+        const Scene scene = small_dam_break({{"solver.name", solver}});
+        auto with = make_simulation<2>(scene);
+        auto without = make_simulation<2>(scene);
+        without.set_output_fields({.pressure = false});
+        CHECK(with.output_fields().pressure);
+        std::fill(without.state().pressure.begin(), without.state().pressure.end(), Real(-1));
+        with.advance_to(0.02);
+        without.advance_to(0.02);
+        with.update_fields();
+        without.update_fields();
+        CHECK(with.state().position == without.state().position);
+        CHECK(with.state().velocity == without.state().velocity);
+        CHECK(with.state().density == without.state().density);
+        const auto positive = [](const State<2>& s) {
+            return std::any_of(s.pressure.begin(), s.pressure.end(), [](Real p) { return p > 0; });
+        };
+        CHECK(positive(with.state()));
+        if (std::string(solver) == "dfsph") // its pressure is an output only: never written
+            CHECK(std::all_of(without.state().pressure.begin(), without.state().pressure.end(),
+                              [](Real p) { return p == -1; }));
+        // A snapshot carries the pressure only when asked to.
+        Snapshot frame;
+        copy_fields(without.state(), frame, without.output_fields());
+        CHECK(frame.pressure.empty());
+        CHECK(frame.density.size() == without.state().size());
+        copy_fields(with.state(), frame);
+        CHECK(frame.pressure.size() == with.state().size());
+    }
+}

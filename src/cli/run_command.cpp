@@ -141,6 +141,11 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
     }
     if (render_sink)
         sinks.push_back(std::move(render_sink));
+    // Only the fields some sink reads are computed for output and copied.
+    FrameFields fields{.pressure = false};
+    for (const auto& sink : sinks)
+        fields |= sink->fields();
+    sim.set_output_fields(fields);
 
     RunRecord record;
     record.path = folder / "run.json";
@@ -165,6 +170,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
           {"exports", options.exports},
           {"png", options.png ? json("frames/") : json(false)},
           {"mp4", options.mp4 ? json("clip.mp4") : json(false)}}},
+        {"output_fields", {{"pressure", fields.pressure}}},
     };
     if (render)
         record.document["gl"] = {{"backend", render->gl_info().backend},
@@ -296,7 +302,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             const auto fields_start = std::chrono::steady_clock::now();
             snapshot.stats = measure_frame(sim.params(), sim.state());
             snapshot.wall_seconds = wall();
-            copy_fields(sim.state(), snapshot);
+            copy_fields(sim.state(), snapshot, fields);
             if (render && D == 3 && scene.render.cull_buried)
                 mark_buried(sim.state(), sim.neighbours(), scene.fluid.spacing, snapshot.buried);
             const auto sinks_start = std::chrono::steady_clock::now();

@@ -11,6 +11,8 @@ class FrameSink {
   public:
     virtual ~FrameSink() = default;
     virtual void write(const Snapshot& frame) = 0;
+    // The optional fields it reads (none by default).
+    virtual FrameFields fields() const { return {.pressure = false}; }
     // Called once after the last frame, also when a run stops early.
     virtual void finish() {}
 };

@@ -18,6 +18,7 @@ class ParticleCsv final : public FrameSink {
     // Frames go to folder/particles/.
     explicit ParticleCsv(std::filesystem::path folder) : folder_(std::move(folder)) {}
     void write(const Snapshot& frame) override;
+    FrameFields fields() const override { return {.pressure = true}; }
 
   private:
     std::filesystem::path folder_;
@@ -28,6 +29,7 @@ class ParticleVtk final : public FrameSink {
     // Frames go to folder/particles/, the collection to folder/particles.pvd.
     explicit ParticleVtk(std::filesystem::path folder) : folder_(std::move(folder)) {}
     void write(const Snapshot& frame) override;
+    FrameFields fields() const override { return {.pressure = true}; }
 
   private:
     std::filesystem::path folder_;

@@ -36,6 +36,10 @@ class RenderSink final : public FrameSink {
     void write(const Snapshot& frame) override;
     // Waits for the PNGs and finalises the video, also after an early stop.
     void finish() override;
+    // Pressure only when the particles are coloured by it.
+    FrameFields fields() const override {
+        return {.pressure = renderer_.settings().field == "pressure"};
+    }
 
     const GlInfo& gl_info() const { return context_->info(); }
     // Per frame written; the encoder's part is complete after finish().

@@ -5,6 +5,7 @@
 // a fixed one; callers take frames at times they choose, which the steps
 // land on exactly.
 
+#include "sph/snapshot.hpp"
 #include "sph/solvers/solver.hpp"
 #include "sph/step_counters.hpp"
 #include "sph/watchdog.hpp"
@@ -37,6 +38,11 @@ class Simulation {
     // Density and pressure at the current positions, for output; the
     // paddles' particles are placed at time() first.
     void update_fields();
+    // The fields the run's outputs read (all by default): a field no output
+    // reads is not computed for output (dfsph's pressure, the pressure at
+    // frame times).
+    void set_output_fields(FrameFields fields) { output_fields_ = fields; }
+    FrameFields output_fields() const { return output_fields_; }
     // The step the stability conditions allow now (the fixed one if fixed).
     Real next_dt() const;
     // Counters since the last call, then reset.
@@ -65,6 +71,7 @@ class Simulation {
         StepContext<D> ctx{*search_, neighbours_, boundary(), boundary_neighbours_,
                            effects_, &stages_};
         ctx.start_time = time_;
+        ctx.output_pressure = output_fields_.pressure;
         if (boundary_ && boundary_->has_moving())
             ctx.moving_boundary = &*boundary_;
         return ctx;
@@ -88,6 +95,7 @@ class Simulation {
     std::uint64_t steps_ = 0;
     std::uint64_t fixed_steps_ = 0;
     std::uint64_t particle_steps_ = 0;
+    FrameFields output_fields_;
     mutable StageTimes stages_; // next_dt() const is timed too // fixed dt: time is this count
                                 // times dt, free of rounding
 };

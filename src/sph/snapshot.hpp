@@ -13,6 +13,19 @@
 
 namespace sph {
 
+// Which of a frame's optional fields its consumers read; a field none of
+// them reads is neither computed for output nor copied. Positions,
+// velocities, densities and ids are always there: stats.csv's figures and
+// state hash read them.
+struct FrameFields {
+    bool pressure = true; // the pressure colour map, the particle exports
+
+    FrameFields& operator|=(const FrameFields& other) {
+        pressure = pressure || other.pressure;
+        return *this;
+    }
+};
+
 struct Snapshot {
     int dimension = 2;
     std::uint64_t frame = 0;
@@ -22,7 +35,8 @@ struct Snapshot {
     Real wall_seconds = 0;    // since the start of the simulation
     FrameStats stats;
     // Particle fields, `dimension` values per particle for vectors.
-    std::vector<Real> position, velocity, density, pressure;
+    std::vector<Real> position, velocity, density;
+    std::vector<Real> pressure; // empty when no consumer reads it (FrameFields)
     std::vector<std::uint32_t> id;
     // 1 for particles deep inside the fluid (sph/surface.hpp), which a camera
     // outside it cannot see; empty when not computed.
@@ -32,7 +46,7 @@ struct Snapshot {
 };
 
 template <int D>
-void copy_fields(const State<D>& state, Snapshot& snapshot) {
+void copy_fields(const State<D>& state, Snapshot& snapshot, FrameFields fields = {}) {
     const std::size_t n = state.size();
     snapshot.dimension = D;
     snapshot.position.resize(n * D);
@@ -43,7 +57,10 @@ void copy_fields(const State<D>& state, Snapshot& snapshot) {
             snapshot.velocity[i * D + a] = state.velocity[i][a];
         }
     snapshot.density = state.density;
-    snapshot.pressure = state.pressure;
+    if (fields.pressure)
+        snapshot.pressure = state.pressure;
+    else
+        snapshot.pressure.clear();
     snapshot.id = state.id;
 }
 

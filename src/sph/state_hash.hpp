@@ -3,9 +3,12 @@
 // can check that two runs gave the same bits (same scene, build and thread
 // count, or any thread count: the solvers are deterministic).
 //
-// Each particle's exact bits (id, position, velocity, density, pressure) are
+// Each particle's exact bits (id, position, velocity, density) are
 // hashed (FNV-1a, 64 bits) and the particle hashes summed, so the
-// fingerprint does not depend on the order particles sit in memory.
+// fingerprint does not depend on the order particles sit in memory. Pressure
+// is left out: it follows from the density (seed, wcsph) or is an output of
+// the last solve (dfsph), and a run computes it only when an output reads it
+// (FrameFields), which must not change the fingerprint.
 
 #include "sph/snapshot.hpp"
 
@@ -33,7 +36,6 @@ inline std::uint64_t state_hash(const Snapshot& frame) {
             add(std::bit_cast<std::uint64_t>(frame.velocity[i * d + a]));
         }
         add(std::bit_cast<std::uint64_t>(frame.density[i]));
-        add(std::bit_cast<std::uint64_t>(frame.pressure[i]));
         total += h;
     }
     return total;

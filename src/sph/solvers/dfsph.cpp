@@ -245,11 +245,15 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     // 4. Constant density: v so that rho* = rho0; p_i = rho_i^2 s_i / dt.
     auto solve_timed = std::make_optional<StageTimes::Scope>(context.stages, "pressure solve");
     report.pressure_iterations = solve(params, dt, Target::density, context, state);
-    const std::size_t n = state.size();
+    // The pressure itself moves nothing (the solves work with stiffnesses):
+    // it is an output, computed only when one reads it.
+    if (context.output_pressure) {
+        const std::size_t n = state.size();
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i)
-        state.pressure[i] =
-            state.density[i] * state.density[i] * (stiffness_sum_[i] + divergence_sum_[i]) / dt;
+        for (std::size_t i = 0; i < n; ++i)
+            state.pressure[i] = state.density[i] * state.density[i] *
+                                (stiffness_sum_[i] + divergence_sum_[i]) / dt;
+    }
     previous_dt_ = dt;
     solve_timed.reset();
     // 5. Move; the reflecting box and the obstacles' surfaces stay behind the

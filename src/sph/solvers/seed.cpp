@@ -41,7 +41,8 @@ void SeedSolver<D>::update_fields(const Params<D>& params, State<D>& state,
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         context.find_neighbours(state.position, params.h);
         compute_density(params, kernel, context.neighbours, state);
-        compute_pressure_linear(params, state);
+        if (context.output_pressure) // the next step computes its own
+            compute_pressure_linear(params, state);
     });
 }
 

@@ -30,6 +30,7 @@ struct StepContext {
     StageTimes* stages = nullptr; // where stage times go; null: not timed
     Real dt = 0;                  // s, the step being taken (XSPH reads it)
     Real start_time = 0;          // s, when the step starts (paddles move with it)
+    bool output_pressure = true;  // an output reads the pressure field (FrameFields)
     // The boundary set again, writable, when it holds paddles; null when
     // nothing in it moves.
     BoundaryParticles<D>* moving_boundary = nullptr;

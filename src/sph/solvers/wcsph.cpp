@@ -39,7 +39,10 @@ template <int D>
 void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
                                    StepContext<D>& context) {
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
-        density_and_pressure(params, kernel, context, state);
+        if (context.output_pressure)
+            density_and_pressure(params, kernel, context, state);
+        else // the next step computes its own pressure
+            find_neighbours_and_density(params, kernel, context, state);
     });
 }
 

@@ -223,3 +223,27 @@ TEST_CASE("a flooded emitter waits instead of stacking particles", "[effects]") 
             closest = std::min(closest, glm::length(x[i] - x[j]));
     CHECK(closest > 0.3 * 0.004);
 }
+
+TEST_CASE("an effect the scene does not name allocates nothing", "[effects]") {
+    auto bytes_of_effects = [](const Simulation<2>& sim) {
+        std::size_t total = 0;
+        for (const auto& e : sim.effects())
+            total += e->bytes();
+        return total;
+    };
+    // Gravity and viscosity keep no arrays; surface tension keeps its normals.
+    auto plain = make_simulation<2>(square_blob("wcsph", R"({"gravity": [0, -9.81]})"));
+    auto tension = make_simulation<2>(square_blob("wcsph", R"({"surface_tension": {}})"));
+    plain.step();
+    tension.step();
+    CHECK(bytes_of_effects(plain) == 0);
+    CHECK(bytes_of_effects(tension) >= tension.state().size() * sizeof(Vec<2>));
+    // The particles' own arrays are the same whatever the effects.
+    std::size_t arrays_plain = 0, arrays_tension = 0;
+    plain.state().for_each_array([&](auto&) { ++arrays_plain; });
+    tension.state().for_each_array([&](auto&) { ++arrays_tension; });
+    CHECK(arrays_plain == arrays_tension);
+    // No walls made of particles and no obstacles: no boundary set at all.
+    auto seed = make_simulation<2>(default_scene({{"fluid.spacing", "0.005715"}}));
+    CHECK(seed.boundary() == nullptr);
+}

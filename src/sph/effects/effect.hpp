@@ -45,6 +45,9 @@ class Effect {
     // The speed it gives the particles it makes (0 if none), for the time
     // step's first estimate.
     virtual Real speed() const { return 0; }
+    // Bytes of the arrays it keeps (its own per-particle arrays, its
+    // sites); an effect the scene does not name is not built and holds none.
+    virtual std::size_t bytes() const { return 0; }
 };
 
 template <int D>

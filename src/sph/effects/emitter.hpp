@@ -41,6 +41,7 @@ class Emitter final : public Effect<D> {
 
     std::string_view name() const override { return "emitters"; }
     void apply(const Params<D>&, const EffectInputs<D>&, State<D>&) override {}
+    std::size_t bytes() const override { return sites_.capacity() * sizeof(Vec<D>); }
 
     void before_step(const Params<D>&, Real time, State<D>& state) override {
         if (time >= start_ && time < end_ + interval_)

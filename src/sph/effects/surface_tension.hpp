@@ -73,6 +73,8 @@ class SurfaceTension final : public Effect<D> {
         }
     }
 
+    std::size_t bytes() const override { return normals_.capacity() * sizeof(Vec<D>); }
+
   private:
     template <class Kernel>
     void compute_normals(const Params<D>& params, const Kernel& kernel,

@@ -247,3 +247,49 @@ TEST_CASE("an effect the scene does not name allocates nothing", "[effects]") {
     auto seed = make_simulation<2>(default_scene({{"fluid.spacing", "0.005715"}}));
     CHECK(seed.boundary() == nullptr);
 }
+
+TEST_CASE("a disc emitter emits only within its radius of the axis", "[effects]") {
+    // A 3D inlet box 4 cm x 4 cm across, one spacing (4 mm) thick along x,
+    // cut to a disc of radius 1.5 cm: 10 x 10 sites, of which those within
+    // 1.5 cm of the axis.
+    auto scene = [](const std::string& radius) {
+        return default_scene(
+            {{"dimension", "3"},
+             {"domain.max", "[0.2,0.2,0.2]"},
+             {"fluid.spacing", "0.004"},
+             {"fluid.blocks", R"([{"min":[0,0,0],"max":[0.2,0.008,0.2]}])"},
+             {"solver.name", "dfsph"},
+             {"effects", R"({"emitters": [{"min": [0, 0.08, 0.08], "max": [0.004, 0.12, 0.12],
+                             "velocity": [1, 0, 0])" +
+                             radius + "}]}"}});
+    };
+    auto sim = make_simulation<3>(scene(R"(, "radius": 0.015)"));
+    const auto& emitter = [&]() -> const Emitter<3>& {
+        for (const auto& e : sim.effects())
+            if (e->name() == "emitters")
+                return dynamic_cast<const Emitter<3>&>(*e);
+        throw std::logic_error("no emitter");
+    }();
+    std::size_t expected = 0;
+    for (int j = 0; j < 10; ++j)
+        for (int k = 0; k < 10; ++k) {
+            const double y = (j + 0.5) * 0.004 - 0.02, z = (k + 0.5) * 0.004 - 0.02;
+            expected += std::sqrt(y * y + z * z) <= 0.015;
+        }
+    CHECK(emitter.batch() == expected);
+    CHECK(expected < 100);
+    const std::size_t initial = sim.state().size();
+    sim.advance_to(0.001); // the first batch, just out of the box
+    REQUIRE(sim.state().size() == initial + expected);
+    for (std::size_t i = initial; i < sim.state().size(); ++i) {
+        const auto& x = sim.state().position[i];
+        CHECK(std::hypot(x.y - 0.1, x.z - 0.1) <= 0.015 + 1e-9);
+    }
+    // A radius that holds no site is an error naming the field.
+    try {
+        make_simulation<3>(scene(R"(, "radius": 0.001)"));
+        FAIL("accepted");
+    } catch (const InputError& e) {
+        CHECK_THAT(e.what(), Catch::Contains("effects.emitters[0].radius"));
+    }
+}

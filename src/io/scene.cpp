@@ -615,6 +615,11 @@ void read_emitters(FieldReader& r, int dim, std::vector<SceneEmitter>& emitters)
                            Bound::non_negative);
         e.end = r.number(p + ".end", fallback.end, "s", "When the emitter stops.",
                          Bound::non_negative);
+        e.radius = r.optional_number(
+            p + ".radius", "m", "the whole box",
+            "A disc inlet (a round pipe in 3D): only the box's lattice sites within this "
+            "distance of the axis through its centre along velocity are emitted.",
+            Bound::positive);
         if (i >= count)
             break;
         double speed = 0;
@@ -1500,6 +1505,9 @@ json to_json(const Scene& s) {
                                 {"velocity", vec(e.velocity)},
                                 {"start", e.start},
                                 {"end", e.end}});
+        for (std::size_t i = 0; i < s.effects.emitters.size(); ++i)
+            if (const auto radius = s.effects.emitters[i].radius)
+                emitters[i]["radius"] = *radius;
         effects["emitters"] = emitters;
     }
     if (!s.effects.paddles.empty()) {

@@ -47,6 +47,9 @@ struct SceneEmitter {
     Vec3 velocity{0, 0, 0};          // m/s, not zero
     double start = 0;                // s
     double end = 1e300;              // s
+    // m: a disc inlet, the box's sites within this distance of the axis
+    // through its centre along the velocity; none: the whole box.
+    std::optional<double> radius;
 };
 
 // A box that moves with a prescribed motion (effects.paddles): a piston

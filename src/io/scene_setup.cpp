@@ -10,6 +10,8 @@
 #include "sph/effects/xsph.hpp"
 #include "sph/lattice.hpp"
 
+#include <fmt/format.h>
+
 namespace sph {
 
 namespace {
@@ -134,7 +136,8 @@ EffectList<D> make_effects(const Scene& scene) {
         effects.push_back(std::make_unique<Xsph<D>>(*scene.effects.xsph));
     if (scene.effects.surface_tension)
         effects.push_back(std::make_unique<SurfaceTension<D>>(*scene.effects.surface_tension));
-    for (const auto& e : scene.effects.emitters) {
+    for (std::size_t index = 0; index < scene.effects.emitters.size(); ++index) {
+        const SceneEmitter& e = scene.effects.emitters[index];
         // The box's lattice, as for a fluid block; its thickness along v.
         const Real spacing = scene.fluid.spacing;
         const Vec<D> velocity = to_vec<D>(e.velocity);
@@ -147,14 +150,26 @@ EffectList<D> make_effects(const Scene& scene) {
             total *= count[a];
             thickness += std::abs(along[a]) * Real(count[a]) * spacing;
         }
-        std::vector<Vec<D>> sites(total);
+        // A disc inlet keeps the sites within its radius of the axis.
+        const Vec<D> centre = (to_vec<D>(e.min) + to_vec<D>(e.max)) / Real(2);
+        std::vector<Vec<D>> sites;
+        sites.reserve(total);
         for (std::size_t k = 0; k < total; ++k) {
             std::size_t rest = k;
+            Vec<D> x;
             for (int a = 0; a < D; ++a) {
-                sites[k][a] = e.min[a] + (Real(rest % count[a]) + Real(0.5)) * spacing;
+                x[a] = e.min[a] + (Real(rest % count[a]) + Real(0.5)) * spacing;
                 rest /= count[a];
             }
+            const Vec<D> off = x - centre;
+            if (!e.radius || glm::length(off - glm::dot(off, along) * along) <= *e.radius)
+                sites.push_back(x);
         }
+        if (sites.empty())
+            throw InputError(scene.file, fmt::format("effects.emitters[{}].radius", index),
+                             fmt::format("no lattice site of the box lies within {} m of its "
+                                         "axis; give a radius of at least half a spacing ({} m)",
+                                         *e.radius, spacing / 2));
         effects.push_back(std::make_unique<Emitter<D>>(Box<D>{to_vec<D>(e.min), to_vec<D>(e.max)},
                                                        spacing, std::move(sites), velocity,
                                                        thickness, e.start, e.end));

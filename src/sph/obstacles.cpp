@@ -270,25 +270,7 @@ Vec<D> put_on_surface(const Obstacle<D>& o, Vec<D>& x) {
             x = o.centre + (o.radius + hair) * normal;
         return normal;
     }
-    // The face nearest inside; placed on it exactly, not by arithmetic that
-    // could round back inside.
-    int axis = 0;
-    Real nearest = std::numeric_limits<Real>::infinity();
-    for (int a = 0; a < D; ++a) {
-        const Real below = x[a] - o.box.min[a], above = o.box.max[a] - x[a];
-        if (below < nearest) {
-            nearest = below;
-            axis = -1 - a;
-        }
-        if (above < nearest) {
-            nearest = above;
-            axis = 1 + a;
-        }
-    }
-    const int a = std::abs(axis) - 1;
-    normal[a] = axis > 0 ? 1 : -1;
-    x[a] = axis > 0 ? o.box.max[a] : o.box.min[a];
-    return normal;
+    return o.box.put_on_nearest_face(x); // the face nearest inside
 }
 
 } // namespace

@@ -93,22 +93,9 @@ std::size_t push_out_of_paddles(std::span<const Paddle<D>> paddles, Real t, Stat
             if (!box.contains(x))
                 continue;
             // Out through the nearest face, placed on it exactly.
-            int axis = 0;
-            Real nearest = std::numeric_limits<Real>::infinity();
-            for (int a = 0; a < D; ++a) {
-                const Real below = x[a] - box.min[a], above = box.max[a] - x[a];
-                if (below < nearest) {
-                    nearest = below;
-                    axis = -1 - a;
-                }
-                if (above < nearest) {
-                    nearest = above;
-                    axis = 1 + a;
-                }
-            }
-            const int a = std::abs(axis) - 1;
-            const Real outward = axis > 0 ? 1 : -1;
-            x[a] = axis > 0 ? box.max[a] : box.min[a];
+            const Vec<D> normal = box.put_on_nearest_face(x);
+            const int a = normal[0] != 0 ? 0 : normal[1] != 0 ? 1 : 2;
+            const Real outward = normal[a];
             // Moving into the paddle relative to it: take its normal velocity.
             Real& v = state.velocity[i][a];
             if ((v - paddle_velocity[a]) * outward < 0)

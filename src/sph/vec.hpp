@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <glm/glm.hpp>
 
 namespace sph {
@@ -28,6 +29,30 @@ struct Box {
             if (!(x[a] > min[a] && x[a] < max[a]))
                 return false;
         return true;
+    }
+
+    // Puts x, a point inside, on the face nearest to it, exactly (not by
+    // arithmetic that could round back inside), and returns that face's
+    // outward normal. The last guards of obstacles and paddles use it.
+    Vec<D> put_on_nearest_face(Vec<D>& x) const {
+        int axis = 0, side = 1;
+        Real nearest = std::numeric_limits<Real>::infinity();
+        for (int a = 0; a < D; ++a) {
+            if (x[a] - min[a] < nearest) {
+                nearest = x[a] - min[a];
+                axis = a;
+                side = -1;
+            }
+            if (max[a] - x[a] < nearest) {
+                nearest = max[a] - x[a];
+                axis = a;
+                side = 1;
+            }
+        }
+        x[axis] = side > 0 ? max[axis] : min[axis];
+        Vec<D> normal(0);
+        normal[axis] = Real(side);
+        return normal;
     }
 };
 

@@ -13,6 +13,7 @@
 #include "sph/neighbours/all_pairs.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <cmath>
 #include <numbers>
 
@@ -260,4 +261,26 @@ TEST_CASE("a honey-like fluid spreads as Huppert's viscous gravity current",
         INFO("t = " << t << " s: front " << front << " m, Huppert " << huppert << " m");
         CHECK(front == Approx(huppert).epsilon(0.08));
     }
+}
+
+TEST_CASE("the resolved viscosity effects survive run.json's scene read back", "[viscosity][scene]") {
+    using Names = std::vector<std::string>;
+    const std::vector<std::vector<Override>> scenes{
+        {},
+        {{"solver.name", "wcsph"}},
+        // Off by name while the legacy keys would turn them on.
+        {{"solver.name", "wcsph"},
+         {"effects", R"({"viscosity": {"mu": 0}, "artificial_viscosity": {"alpha": 0}})"}},
+        {{"solver.name", "dfsph"},
+         {"material.viscosity", "0"},
+         {"effects", R"({"viscosity": {"model": "seed", "mu": 2}, "xsph": {"epsilon": 0.25}})"}},
+    };
+    for (const auto& overrides : scenes) {
+        const Scene first = default_scene(overrides);
+        const Scene again = parse_scene(to_json(first).dump(), "run.json", {});
+        const auto a = make_effects<2>(first), b = make_effects<2>(again);
+        CHECK(effect_names(a) == effect_names(b));
+        CHECK(to_json(again) == to_json(first));
+    }
+    CHECK(effect_names(make_effects<2>(default_scene(scenes[2]))) == Names{});
 }

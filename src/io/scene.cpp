@@ -1473,11 +1473,13 @@ json to_json(const Scene& s) {
     json effects = json::object();
     if (s.effects.gravity)
         effects["gravity"] = vec(*s.effects.gravity);
-    if (s.effects.viscosity)
-        effects["viscosity"] = {{"model", s.effects.viscosity->model},
-                                {"mu", s.effects.viscosity->mu}};
-    if (s.effects.artificial_viscosity)
-        effects["artificial_viscosity"] = {{"alpha", *s.effects.artificial_viscosity}};
+    // Both always written, 0 when off: read back, an absent key would let
+    // material.viscosity or wcsph's solver.artificial_viscosity turn them on.
+    effects["viscosity"] = s.effects.viscosity
+                               ? json{{"model", s.effects.viscosity->model},
+                                      {"mu", s.effects.viscosity->mu}}
+                               : json{{"mu", 0.0}};
+    effects["artificial_viscosity"] = {{"alpha", s.effects.artificial_viscosity.value_or(0.0)}};
     if (s.effects.xsph)
         effects["xsph"] = {{"epsilon", *s.effects.xsph}};
     if (s.effects.surface_tension)

@@ -1,4 +1,4 @@
-// Ray-cast the sphere behind the quad; write its true depth so spheres
+// Ray-cast the sphere behind the outline; write its true depth so spheres
 // intersect correctly with each other and with meshes.
 in vec3 v_point;
 flat in vec3 v_centre;
@@ -9,6 +9,10 @@ uniform float u_radius;
 uniform bool u_orthographic;
 
 out vec4 f_colour;
+#ifdef CONSERVATIVE_DEPTH
+// The quad lies at the sphere's front: a driver may test depth before shading.
+layout(depth_greater) out float gl_FragDepth;
+#endif
 
 void main() {
     vec3 origin = u_orthographic ? vec3(v_point.xy, v_centre.z + 2.0 * u_radius) : vec3(0.0);

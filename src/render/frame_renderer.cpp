@@ -6,6 +6,7 @@
 #include "render/text.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <embedded_shaders.hpp>
@@ -13,6 +14,7 @@
 #include <glad/gl.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -181,6 +183,36 @@ std::vector<float> mesh_obstacle_triangles(const RenderSettings& s, const glm::d
     return out;
 }
 
+// How a sphere is drawn, by its width in the image (RenderSettings).
+enum Outline : int { ray_cast_square, ray_cast_triangle, flat_disc };
+
+// Orders the first n instances (x, y, z, scalar each) by their depth keys,
+// nearest first, in 4096 classes of equal depth range: a counting sort, one
+// pass to count and one to place, stable within a class.
+void sort_by_depth(std::vector<float>& instances, std::size_t n, const std::vector<float>& keys,
+                   std::vector<float>& scratch, std::vector<std::uint32_t>& starts) {
+    if (n < 2)
+        return;
+    constexpr std::size_t classes = 4096;
+    const auto [lo, hi] = std::minmax_element(keys.begin(), keys.begin() + std::ptrdiff_t(n));
+    const float scale = *hi > *lo ? float(classes - 1) / (*hi - *lo) : 0.f;
+    auto class_of = [&](std::size_t i) {
+        return std::size_t((keys[i] - *lo) * scale);
+    };
+    starts.assign(classes + 1, 0);
+    for (std::size_t i = 0; i < n; ++i)
+        ++starts[class_of(i) + 1];
+    for (std::size_t c = 0; c < classes; ++c)
+        starts[c + 1] += starts[c];
+    scratch.resize(n * 4);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t to = starts[class_of(i)]++;
+        std::copy_n(instances.begin() + std::ptrdiff_t(i * 4), 4,
+                    scratch.begin() + std::ptrdiff_t(to * 4));
+    }
+    std::copy_n(scratch.begin(), n * 4, instances.begin());
+}
+
 } // namespace
 
 RenderSettings make_render_settings(const Scene& scene) {
@@ -254,8 +286,11 @@ RenderSettings make_render_settings(const Scene& scene) {
 
 struct FrameRenderer::Gl {
     GLuint impostor_program = 0, mesh_program = 0, overlay_program = 0, solid_program = 0;
-    GLuint impostor_vao = 0, mesh_vao = 0, overlay_vao = 0, solid_vao = 0;
-    GLuint quad_buffer = 0, instance_buffer = 0, mesh_vertex_buffer = 0, mesh_index_buffer = 0;
+    GLuint disc_program = 0; // flat discs, quads or points (flat_below_px > 0)
+    GLuint impostor_vao = 0, triangle_vao = 0, mesh_vao = 0, overlay_vao = 0, solid_vao = 0,
+           point_vao = 0;
+    GLuint quad_buffer = 0, triangle_buffer = 0, instance_buffer = 0, mesh_vertex_buffer = 0,
+           mesh_index_buffer = 0;
     GLuint overlay_buffer = 0, solid_buffer = 0;
     GLsizei solid_vertex_count = 0; // mesh obstacles, uploaded once
     GLsizei mesh_index_count = 0;
@@ -263,7 +298,11 @@ struct FrameRenderer::Gl {
     GLuint colour_map = 0;
     GLuint msaa_fbo = 0, msaa_colour = 0, msaa_depth = 0;
     GLuint resolve_fbo = 0, resolve_colour = 0;
-    std::vector<float> instances;
+    // The drawn particles' x, y, z, scalar by how they are drawn (Outline),
+    // and their depth keys when sorted; scratch reused from frame to frame.
+    std::array<std::vector<float>, 3> instances, depth_keys;
+    std::vector<float> sorted;
+    std::vector<std::uint32_t> bucket_starts;
     std::vector<OverlayVertex> lines, overlay_triangles;
     std::vector<float> text;
 
@@ -272,11 +311,14 @@ struct FrameRenderer::Gl {
         glDeleteProgram(mesh_program);
         glDeleteProgram(overlay_program);
         glDeleteProgram(solid_program);
-        const GLuint vaos[] = {impostor_vao, mesh_vao, overlay_vao, solid_vao};
-        glDeleteVertexArrays(4, vaos);
-        const GLuint buffers[] = {quad_buffer,       instance_buffer, mesh_vertex_buffer,
-                                  mesh_index_buffer, overlay_buffer,  solid_buffer};
-        glDeleteBuffers(6, buffers);
+        glDeleteProgram(disc_program);
+        const GLuint vaos[] = {impostor_vao, triangle_vao, mesh_vao,
+                               overlay_vao,  solid_vao,    point_vao};
+        glDeleteVertexArrays(6, vaos);
+        const GLuint buffers[] = {quad_buffer,        triangle_buffer,   instance_buffer,
+                                  mesh_vertex_buffer, mesh_index_buffer, overlay_buffer,
+                                  solid_buffer};
+        glDeleteBuffers(7, buffers);
         glDeleteTextures(1, &colour_map);
         const GLuint framebuffers[] = {msaa_fbo, resolve_fbo};
         glDeleteFramebuffers(2, framebuffers);
@@ -288,8 +330,15 @@ struct FrameRenderer::Gl {
 FrameRenderer::FrameRenderer(const RenderSettings& settings)
     : settings_(settings), gl_(std::make_unique<Gl>()) {
     Gl& g = *gl_;
-    g.impostor_program =
-        link(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag, shaders::lighting);
+    const std::string impostor_defines =
+        settings.conservative_depth ? "#define CONSERVATIVE_DEPTH\n" : "";
+    g.impostor_program = link(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag,
+                              impostor_defines + std::string(shaders::lighting));
+    if (settings.flat_below_px > 0) {
+        const std::string disc_defines = settings.flat_as_points ? "#define POINTS\n" : "";
+        g.disc_program = link(shaders::sphere_disc_vert, shaders::sphere_disc_frag,
+                              disc_defines + std::string(shaders::lighting));
+    }
     g.mesh_program = link(shaders::sphere_mesh_vert, shaders::sphere_mesh_frag, shaders::lighting);
     g.overlay_program = link(shaders::overlay_vert, shaders::overlay_frag, "");
 
@@ -305,15 +354,30 @@ FrameRenderer::FrameRenderer(const RenderSettings& settings)
         glVertexAttribDivisor(2, 1);
     };
 
-    glGenVertexArrays(1, &g.impostor_vao);
-    glBindVertexArray(g.impostor_vao);
-    const float corners[] = {-1, -1, 1, -1, -1, 1, 1, 1};
-    glGenBuffers(1, &g.quad_buffer);
-    glBindBuffer(GL_ARRAY_BUFFER, g.quad_buffer);
-    glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+    // The impostor's outlines around the unit circle: a square (a strip of
+    // two triangles), and the equilateral triangle whose inscribed circle it
+    // is (30% more area, half the triangles).
+    auto outline = [&bind_instances](GLuint& vao, GLuint& buffer, const std::vector<float>& xy) {
+        glGenVertexArrays(1, &vao);
+        glBindVertexArray(vao);
+        glGenBuffers(1, &buffer);
+        glBindBuffer(GL_ARRAY_BUFFER, buffer);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(xy.size() * sizeof(float)), xy.data(),
+                     GL_STATIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+        bind_instances();
+    };
+    outline(g.impostor_vao, g.quad_buffer, {-1, -1, 1, -1, -1, 1, 1, 1});
+    const float sqrt3 = std::sqrt(3.f);
+    outline(g.triangle_vao, g.triangle_buffer, {0, 2, -sqrt3, -1, sqrt3, -1});
+
+    // Point sprites: the same per-particle data, one vertex per particle.
+    glGenVertexArrays(1, &g.point_vao);
+    glBindVertexArray(g.point_vao);
     bind_instances();
+    glVertexAttribDivisor(1, 0);
+    glVertexAttribDivisor(2, 0);
 
     glGenVertexArrays(1, &g.mesh_vao);
     glBindVertexArray(g.mesh_vao);
@@ -407,29 +471,6 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // Positions relative to the domain centre: floats stay exact far from the origin.
     const glm::dvec3 origin = 0.5 * (s.domain_min + s.domain_max);
     const int dim = frame.dimension;
-    const bool cull = s.cull_buried && frame.buried.size() == frame.size();
-    g.instances.resize(frame.size() * 4);
-    std::size_t n = 0;
-    // The field is chosen once, not per particle.
-    const bool speed = s.field == "velocity";
-    const std::vector<double>& field = s.field == "density" ? frame.density : frame.pressure;
-    for (std::size_t i = 0; i < frame.size(); ++i) {
-        if (cull && frame.buried[i])
-            continue;
-        double scalar = 0;
-        if (speed) {
-            for (int a = 0; a < dim; ++a)
-                scalar += frame.velocity[i * dim + a] * frame.velocity[i * dim + a];
-            scalar = std::sqrt(scalar);
-        } else {
-            scalar = field[i];
-        }
-        for (int a = 0; a < 3; ++a)
-            g.instances[n * 4 + a] = a < dim ? float(frame.position[i * dim + a] - origin[a]) : 0.f;
-        g.instances[n * 4 + 3] = float(scalar);
-        ++n;
-    }
-    drawn_ = n;
 
     // Cameras: 2D looks at the plane with the domain fitted left of the colour
     // bar; 3D uses the scene's perspective camera.
@@ -465,6 +506,107 @@ Image FrameRenderer::render(const Snapshot& frame) {
             glm::translate(glm::mat4(1.f), glm::vec3(float(-bar_space / w), 0.f, 0.f)) * projection;
     }
 
+    // Which particles to draw and how, seen through the camera: skip those
+    // buried in the fluid and those whose sphere lies wholly outside the view,
+    // and group the rest by how they are drawn (Outline), from their width in
+    // the image.
+    const glm::dmat4 clip_from_world(projection * view);
+    auto clip_row = [&clip_from_world](int r) {
+        return glm::dvec4(clip_from_world[0][r], clip_from_world[1][r], clip_from_world[2][r],
+                          clip_from_world[3][r]);
+    };
+    // The view's six planes from the clip matrix (Gribb and Hartmann 2001,
+    // "Fast extraction of viewing frustum planes from the world-view-projection
+    // matrix"): w +- x, w +- y, w +- z, each >= 0 inside; normalised, so a
+    // plane's value at a point is its distance from the plane.
+    std::array<glm::dvec4, 6> planes;
+    for (int a = 0; a < 3; ++a)
+        for (int side = 0; side < 2; ++side) {
+            const glm::dvec4 plane = clip_row(3) + (side ? -1.0 : 1.0) * clip_row(a);
+            planes[std::size_t(2 * a + side)] = plane / glm::length(glm::dvec3(plane));
+        }
+    const glm::dvec4 depth_row = clip_row(2), w_row = clip_row(3);
+    // A sphere whose every point is at least a little outside one plane colours
+    // no pixel: the impostor's fragments all lie within its silhouette, the
+    // mesh within the sphere. The margin covers the GPU's float round-off.
+    const double cull_margin = 1.01 * s.radius + 1e-6 * glm::length(s.domain_max - s.domain_min);
+    // A sphere's image is r P[1][1] h / w pixels across (P[1][1]: view-space y
+    // to clip y; w: the distance in front of the eye, 1 in 2D).
+    const double px_per_radius = projection[1][1] * h;
+    const bool cull_buried = s.cull_buried && frame.buried.size() == frame.size();
+    const bool impostor = s.spheres == "impostor";
+    const bool may_flat = impostor && s.flat_below_px > 0;
+    const bool may_triangle = impostor && s.triangles_below_px > 0;
+    for (int group = 0; group < 3; ++group)
+        if (group == ray_cast_square || (group == ray_cast_triangle && may_triangle) ||
+            (group == flat_disc && may_flat)) {
+            g.instances[group].resize(frame.size() * 4);
+            if (s.sort_front_to_back)
+                g.depth_keys[group].resize(frame.size());
+        }
+    std::array<std::size_t, 3> count{};
+    std::size_t outside = 0;
+    // The field is chosen once, not per particle.
+    const bool speed = s.field == "velocity";
+    const std::vector<double>& field = s.field == "density" ? frame.density : frame.pressure;
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+        if (cull_buried && frame.buried[i])
+            continue;
+        glm::dvec4 p(0, 0, 0, 1);
+        for (int a = 0; a < dim; ++a)
+            p[a] = frame.position[i * dim + a] - origin[a];
+        // Distance inside the nearest side plane (left, right, bottom, top).
+        double inside = std::numeric_limits<double>::max();
+        if (s.cull_outside_view) {
+            bool outside_a_plane = false;
+            for (std::size_t k = 0; k < planes.size(); ++k) {
+                const double distance = glm::dot(planes[k], p);
+                outside_a_plane = outside_a_plane || distance < -cull_margin;
+                if (k < 4)
+                    inside = std::min(inside, distance);
+            }
+            if (outside_a_plane) {
+                ++outside;
+                continue;
+            }
+        }
+        double scalar = 0;
+        if (speed) {
+            for (int a = 0; a < dim; ++a)
+                scalar += frame.velocity[i * dim + a] * frame.velocity[i * dim + a];
+            scalar = std::sqrt(scalar);
+        } else {
+            scalar = field[i];
+        }
+        // By the sphere's width in the image (r px_per_radius / w pixels); a
+        // point sprite also needs its whole disc in view, as GL drops a point
+        // whose centre is outside it.
+        int group = ray_cast_square;
+        if (may_flat || may_triangle) {
+            const double w_clip = glm::dot(w_row, p), width_times_w = s.radius * px_per_radius;
+            if (w_clip > 0 && may_flat && width_times_w < s.flat_below_px * w_clip &&
+                (!s.flat_as_points || (s.cull_outside_view && inside > cull_margin)))
+                group = flat_disc;
+            else if (w_clip > 0 && may_triangle && width_times_w < s.triangles_below_px * w_clip)
+                group = ray_cast_triangle;
+        }
+        std::vector<float>& out = g.instances[group];
+        const std::size_t k = count[group]++;
+        for (int a = 0; a < 3; ++a)
+            out[k * 4 + std::size_t(a)] = float(p[a]);
+        out[k * 4 + 3] = float(scalar);
+        if (s.sort_front_to_back)
+            g.depth_keys[group][k] = float(glm::dot(depth_row, p));
+    }
+    if (s.sort_front_to_back)
+        for (int group = 0; group < 3; ++group)
+            sort_by_depth(g.instances[group], count[group], g.depth_keys[group], g.sorted,
+                          g.bucket_starts);
+    drawn_ = count[ray_cast_square] + count[ray_cast_triangle] + count[flat_disc];
+    flat_ = count[flat_disc];
+    outside_view_ = outside;
+    timings_.fill_seconds = seconds_since(start);
+
     glBindFramebuffer(GL_FRAMEBUFFER, g.msaa_fbo);
     glViewport(0, 0, w, h);
     glClearColor(0.08f, 0.09f, 0.11f, 1.f);
@@ -476,32 +618,62 @@ Image FrameRenderer::render(const Snapshot& frame) {
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_1D, g.colour_map);
 
-    if (n > 0) {
+    if (drawn_ > 0) {
+        // One buffer: the squares, the triangles, then the flat discs.
         glBindBuffer(GL_ARRAY_BUFFER, g.instance_buffer);
-        if (n > g.instance_capacity) {
-            g.instance_capacity = n + n / 4;
+        if (drawn_ > g.instance_capacity) {
+            g.instance_capacity = drawn_ + drawn_ / 4;
             glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(g.instance_capacity * 16), nullptr,
                          GL_STREAM_DRAW);
         }
-        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(n * 16), g.instances.data());
-        const bool impostor = s.spheres == "impostor";
-        const GLuint program = impostor ? g.impostor_program : g.mesh_program;
-        glUseProgram(program);
-        glUniformMatrix4fv(glGetUniformLocation(program, "u_view"), 1, GL_FALSE,
-                           glm::value_ptr(view));
-        glUniformMatrix4fv(glGetUniformLocation(program, "u_projection"), 1, GL_FALSE,
-                           glm::value_ptr(projection));
-        glUniform1f(glGetUniformLocation(program, "u_radius"), float(s.radius));
-        glUniform1i(glGetUniformLocation(program, "u_orthographic"), orthographic);
-        glUniform1i(glGetUniformLocation(program, "u_colour_map"), 0);
-        glUniform2f(glGetUniformLocation(program, "u_range"), float(s.range[0]), float(s.range[1]));
-        if (impostor) {
-            glBindVertexArray(g.impostor_vao);
-            glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(n));
-        } else {
+        std::array<std::size_t, 3> first{};
+        for (int group = 0; group < 3; ++group) {
+            first[group] = group == 0 ? 0 : first[group - 1] + count[group - 1];
+            glBufferSubData(GL_ARRAY_BUFFER, GLintptr(first[group] * 16),
+                            GLsizeiptr(count[group] * 16), g.instances[group].data());
+        }
+        auto use = [&](GLuint program) {
+            glUseProgram(program);
+            glUniformMatrix4fv(glGetUniformLocation(program, "u_view"), 1, GL_FALSE,
+                               glm::value_ptr(view));
+            glUniformMatrix4fv(glGetUniformLocation(program, "u_projection"), 1, GL_FALSE,
+                               glm::value_ptr(projection));
+            glUniform1f(glGetUniformLocation(program, "u_radius"), float(s.radius));
+            glUniform1i(glGetUniformLocation(program, "u_orthographic"), orthographic);
+            glUniform1i(glGetUniformLocation(program, "u_colour_map"), 0);
+            glUniform2f(glGetUniformLocation(program, "u_range"), float(s.range[0]),
+                        float(s.range[1]));
+        };
+        if (!impostor) {
+            use(g.mesh_program);
             glBindVertexArray(g.mesh_vao);
             glDrawElementsInstanced(GL_TRIANGLES, g.mesh_index_count, GL_UNSIGNED_INT, nullptr,
-                                    GLsizei(n));
+                                    GLsizei(count[ray_cast_square]));
+        } else {
+            use(g.impostor_program);
+            if (count[ray_cast_square] > 0) {
+                glBindVertexArray(g.impostor_vao);
+                glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count[ray_cast_square]));
+            }
+            if (count[ray_cast_triangle] > 0) {
+                glBindVertexArray(g.triangle_vao);
+                glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3,
+                                                  GLsizei(count[ray_cast_triangle]),
+                                                  GLuint(first[ray_cast_triangle]));
+            }
+        }
+        if (count[flat_disc] > 0) {
+            use(g.disc_program);
+            glUniform1f(glGetUniformLocation(g.disc_program, "u_viewport_height"), float(h));
+            if (s.flat_as_points) {
+                glEnable(GL_PROGRAM_POINT_SIZE);
+                glBindVertexArray(g.point_vao);
+                glDrawArrays(GL_POINTS, GLint(first[flat_disc]), GLsizei(count[flat_disc]));
+            } else {
+                glBindVertexArray(g.triangle_vao);
+                glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3, GLsizei(count[flat_disc]),
+                                                  GLuint(first[flat_disc]));
+            }
         }
     }
 

@@ -37,6 +37,27 @@ struct RenderSettings {
     int samples = 4;                                 // multisampling
     // Skip particles the snapshot marks as buried deep in the fluid (3D).
     bool cull_buried = false;
+    // Impostors narrower than this (px) are drawn on one triangle around the
+    // sphere's image, wider ones on a square of two: the triangle has 30%
+    // more area but half the triangles, and llvmpipe's cost for small spheres
+    // is mostly per vertex and triangle, for large ones per fragment
+    // (tests/bench/results/render.csv). 0: squares only.
+    double triangles_below_px = 12;
+    // Skip particles whose sphere lies wholly outside the view: they colour
+    // no pixel, so the frame is the same without them.
+    bool cull_outside_view = true;
+    // Impostors whose image is narrower than this (px) are drawn as flat,
+    // lit discs facing the eye at the sphere's front: no ray cast and no
+    // depth written, so llvmpipe can test depth before shading. 0: never.
+    double flat_below_px = 0;
+    // Flat discs as point sprites, one vertex each, not instanced quads.
+    bool flat_as_points = false;
+    // Draw the spheres roughly front to back (by a coarse depth key), so the
+    // depth test rejects the hidden ones' fragments.
+    bool sort_front_to_back = false;
+    // Declare the impostors' depth `depth_greater` (ARB_conservative_depth),
+    // drawing each quad at its sphere's front. Measured in the benchmark.
+    bool conservative_depth = false;
 };
 
 // Settings from the scene's render section; ranges the scene leaves open come
@@ -44,6 +65,7 @@ struct RenderSettings {
 RenderSettings make_render_settings(const Scene& scene);
 
 struct FrameTimings {
+    double fill_seconds = 0;     // culling and filling the instances (part of draw_seconds)
     double draw_seconds = 0;     // submitting and finishing the draw
     double readback_seconds = 0; // resolving and reading the pixels
 };
@@ -58,8 +80,11 @@ class FrameRenderer {
 
     Image render(const Snapshot& frame);
     const FrameTimings& last_timings() const { return timings_; }
-    // Particles drawn in the last frame (buried ones are skipped).
+    // Particles drawn in the last frame (buried ones are skipped), those of
+    // them drawn as flat discs, and those skipped as outside the view.
     std::size_t last_drawn() const { return drawn_; }
+    std::size_t last_flat() const { return flat_; }
+    std::size_t last_outside_view() const { return outside_view_; }
     const RenderSettings& settings() const { return settings_; }
 
   private:
@@ -67,7 +92,7 @@ class FrameRenderer {
     RenderSettings settings_;
     std::unique_ptr<Gl> gl_;
     FrameTimings timings_;
-    std::size_t drawn_ = 0;
+    std::size_t drawn_ = 0, flat_ = 0, outside_view_ = 0;
 };
 
 } // namespace sph

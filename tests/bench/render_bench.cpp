@@ -1,36 +1,56 @@
-// Render benchmark: milliseconds per 1280x720 frame by backend, sphere
-// technique, particle count and layout (a fluid block, or scattered
-// particles). A program that prints a table, not a timed test.
+// Render benchmark: frames per second, milliseconds and CPU milliseconds per
+// 1280x720 frame by backend, sphere technique, particle count (10k, 100k, 1M)
+// and layout: a cube of fluid on a lattice seen whole, the same cube seen
+// from close by (about half of its surface outside the view), and particles
+// scattered at random in the same box (a gas: none buried). A program that
+// prints a table, not a timed test. The techniques of one case take turns
+// frame by frame, so a change in the load of a shared machine touches them
+// alike; each row also gives how far its frame is from the plain ray-cast
+// one's (sphclip compare's metrics), as speed must not cost the look.
 //
-//   build/sphclip_bench_render                 # the full table
-//   build/sphclip_bench_render --tiny          # one small frame per case (CI)
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstring>
-#include <random>
-#include <string>
-#include <vector>
-
-#include <fmt/format.h>
-
+//   build/sphclip_bench_render                       # the full table
+//   build/sphclip_bench_render --csv FILE            # ... also to FILE, machine noted
+//   build/sphclip_bench_render --png FOLDER          # ... and each row's frame
+//   build/sphclip_bench_render --counts 1000000 --backends egl   # a part of it
+//   build/sphclip_bench_render --tiny                # one small frame per case (CI)
+#include "io/image_compare.hpp"
+#include "io/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
 #include "sph/surface.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
 
 using namespace sph;
 
 namespace {
 
 // n particles: a cube of fluid on a lattice, or uniformly scattered in the
-// same box, with speeds that vary so the colour map is exercised.
+// same box, with speeds that vary so the colour map is exercised; a block's
+// buried particles are marked as a run marks them, from its neighbour lists.
 Snapshot make_particles(std::size_t n, bool block, double spacing, double box) {
     Snapshot s;
     s.dimension = 3;
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(0, 1);
     const std::size_t side = std::size_t(std::ceil(std::cbrt(double(n))));
+    s.position.reserve(3 * n);
+    s.velocity.reserve(3 * n);
     for (std::size_t i = 0; i < n; ++i) {
         double x, y, z;
         if (block) {
@@ -48,81 +68,310 @@ Snapshot make_particles(std::size_t n, bool block, double spacing, double box) {
         s.pressure.push_back(0);
         s.id.push_back(std::uint32_t(i));
     }
+    if (block) {
+        State<3> state;
+        state.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            state.position[i] = {s.position[3 * i], s.position[3 * i + 1], s.position[3 * i + 2]};
+        NeighbourList list;
+        SpatialHash<3>().find(state.position, 2.2 * spacing, list);
+        mark_buried(state, list, spacing, s.buried);
+    }
     return s;
 }
 
-double median_ms(FrameRenderer& renderer, const Snapshot& s, int repeat) {
-    std::vector<double> ms;
-    for (int r = 0; r < repeat; ++r) {
-        const auto start = std::chrono::steady_clock::now();
-        renderer.render(s);
-        ms.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count());
+// A way to draw the spheres: each row differs from "ray-cast" (every sphere
+// a ray-cast impostor on a square) in what it names; "default" takes
+// RenderSettings' defaults instead.
+struct Technique {
+    const char* name;
+    const char* spheres = "impostor";
+    bool skip_buried = true;
+    bool cull_view = true;
+    double flat_below_px = 0;
+    bool flat_as_points = false;
+    bool sort = false;
+    bool conservative_depth = false;
+    double triangles_below_px = 0; // 0: squares only
+    int samples = 4;
+    bool defaults = false;
+};
+
+// One technique's renderer and the frames it drew.
+struct Row {
+    const Technique* technique;
+    std::unique_ptr<FrameRenderer> renderer;
+    std::vector<double> ms, cpu_ms, fill_ms, draw_ms, readback_ms;
+    Image image; // the last frame
+};
+
+// How the impostors' outlines are chosen.
+std::string outline_name(const RenderSettings& r) {
+    if (r.spheres != "impostor")
+        return "";
+    if (r.triangles_below_px <= 0)
+        return "square";
+    if (r.triangles_below_px > 1e6)
+        return "triangle";
+    return fmt::format("triangle below {:g} px", r.triangles_below_px);
+}
+
+// CPU time of the whole process, llvmpipe's rasteriser threads included: on
+// a shared machine it moves much less with the others' load than wall time.
+double cpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+// The first line of a file that starts with `key` (as /proc/cpuinfo's
+// "model name"), after its colon; empty if none.
+std::string first_line_with(const char* path, const std::string& key) {
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind(key, 0) == 0) {
+            const std::size_t colon = line.find(':');
+            return colon == std::string::npos ? line : line.substr(colon + 2);
+        }
+    return "";
+}
+
+std::string load_average() {
+    std::ifstream in("/proc/loadavg");
+    double one = 0, five = 0, fifteen = 0;
+    in >> one >> five >> fifteen;
+    return fmt::format("{} {} {}", one, five, fifteen);
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values[values.size() / 2];
+}
+
+std::vector<std::string> split(const std::string& list) {
+    std::vector<std::string> items;
+    std::size_t from = 0;
+    while (from <= list.size()) {
+        const std::size_t to = std::min(list.find(',', from), list.size());
+        if (to > from)
+            items.push_back(list.substr(from, to - from));
+        from = to + 1;
     }
-    std::sort(ms.begin(), ms.end());
-    return ms[ms.size() / 2];
+    return items;
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    const bool tiny = argc > 1 && std::strcmp(argv[1], "--tiny") == 0;
-    const std::vector<std::size_t> counts =
-        tiny ? std::vector<std::size_t>{1000} : std::vector<std::size_t>{10000, 100000};
-    const int width = tiny ? 320 : 1280, height = tiny ? 180 : 720, repeat = tiny ? 1 : 5;
-    fmt::print("backend,spheres,skip_buried,layout,particles,drawn,width,height,ms_per_frame,"
-               "draw_ms,readback_ms\n");
-    for (const char* backend : {"egl", "osmesa"}) {
-        auto context = make_gl_context(backend);
-        // (technique, skip buried): the last is the seed's way, every mesh drawn.
-        const std::pair<const char*, bool> techniques[] = {
-            {"impostor", true}, {"mesh", true}, {"mesh", false}};
-        for (const auto& [spheres, skip_buried] : techniques) {
-            for (bool block : {true, false}) {
-                if (!block && !skip_buried)
-                    continue; // scattered particles have none buried
-                for (std::size_t n : counts) {
-                    // The block's spheres are ~8 px across at 100k, as a fluid
-                    // fills the frame in a clip.
-                    const double side = std::ceil(std::cbrt(double(n)));
-                    const double spacing = 0.1 / side, box = 0.1;
-                    RenderSettings settings;
-                    settings.width = width;
-                    settings.height = height;
-                    settings.dimension = 3;
-                    settings.spheres = spheres;
-                    settings.radius = 0.5 * spacing;
-                    settings.range = {0, 2};
-                    settings.domain_min = glm::dvec3(0);
-                    settings.domain_max = glm::dvec3(box);
-                    settings.camera_target = glm::dvec3(0.05);
-                    settings.camera_position = glm::dvec3(0.05) + 0.2 * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
-                    Snapshot s = make_particles(n, block, spacing, box);
-                    // As in a run: neighbour counts let buried particles be skipped
-                    // (for the fluid block; scattered particles are a gas, all visible).
-                    const double h = 2.2 * spacing;
-                    settings.cull_buried = block && skip_buried;
-                    State<3> state;
-                    state.resize(n);
-                    for (std::size_t i = 0; i < n; ++i)
-                        state.position[i] = {s.position[3 * i], s.position[3 * i + 1],
-                                             s.position[3 * i + 2]};
-                    NeighbourList list;
-                    SpatialHash<3>().find(state.position, h, list);
-                    mark_buried(state, list, spacing, s.buried);
-                    FrameRenderer renderer(settings);
-                    renderer.render(s); // warm-up: shader compilation, buffers
-                    const double ms = median_ms(renderer, s, repeat);
-                    fmt::print("{},{},{},{},{},{},{},{},{:.1f},{:.1f},{:.1f}\n", backend,
-                               spheres, skip_buried ? "yes" : "no", block ? "block" : "scattered", n, renderer.last_drawn(), width,
-                               height, ms,
-                               renderer.last_timings().draw_seconds * 1e3,
-                               renderer.last_timings().readback_seconds * 1e3);
-                    std::fflush(stdout);
+    bool tiny = false;
+    std::string csv_path, png_folder, counts_arg, backends_arg = "egl,osmesa";
+    for (int k = 1; k < argc; ++k) {
+        const std::string arg = argv[k];
+        if (arg == "--tiny")
+            tiny = true;
+        else if (arg == "--csv" && k + 1 < argc)
+            csv_path = argv[++k];
+        else if (arg == "--png" && k + 1 < argc)
+            png_folder = argv[++k];
+        else if (arg == "--counts" && k + 1 < argc)
+            counts_arg = argv[++k];
+        else if (arg == "--backends" && k + 1 < argc)
+            backends_arg = argv[++k];
+        else {
+            fmt::print(stderr,
+                       "usage: {} [--tiny] [--counts N,N] [--backends egl,osmesa] [--csv FILE] "
+                       "[--png FOLDER]\n",
+                       argv[0]);
+            return 2;
+        }
+    }
+    std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
+    if (!csv_path.empty() && !csv) {
+        fmt::print(stderr, "cannot write {}\n", csv_path);
+        return 2;
+    }
+    auto emit = [csv](const std::string& line) {
+        fmt::print("{}\n", line);
+        std::fflush(stdout);
+        if (csv) {
+            fmt::print(csv, "{}\n", line);
+            std::fflush(csv);
+        }
+    };
+    if (!png_folder.empty())
+        std::filesystem::create_directories(png_folder);
+
+    const int width = tiny ? 320 : 1280, height = tiny ? 180 : 720;
+    std::vector<std::size_t> counts =
+        tiny ? std::vector<std::size_t>{1000} : std::vector<std::size_t>{10000, 100000, 1000000};
+    if (!counts_arg.empty()) {
+        counts.clear();
+        for (const std::string& item : split(counts_arg))
+            counts.push_back(std::stoul(item));
+    }
+    const std::vector<std::string> backends = split(backends_arg);
+    // The machine, in the CSV's header: these figures mean little without it.
+    auto note = [csv](const std::string& line) {
+        if (csv)
+            fmt::print(csv, "# {}\n", line);
+    };
+    {
+        const std::time_t now = std::time(nullptr);
+        char date[32];
+        std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+        note(fmt::format("sphclip_bench_render, {}", date));
+        note(fmt::format("{} cores (nproc), {}", std::thread::hardware_concurrency(),
+                         first_line_with("/proc/cpuinfo", "model name")));
+        auto context = make_gl_context(backends.empty() ? "auto" : backends.front());
+        note(fmt::format("{}, OpenGL {}", context->info().renderer, context->info().version));
+        note(fmt::format("load average (1, 5, 15 min) at the start: {}", load_average()));
+    }
+    // Every sphere ray-cast on a square first (the renderer before triangles,
+    // culling and flat discs): the others' frames are compared with its.
+    // "default" is RenderSettings' defaults: small spheres on triangles.
+    const std::vector<Technique> techniques = {
+        {.name = "ray-cast"},
+        {.name = "view culling off", .cull_view = false},
+        {.name = "conservative depth", .conservative_depth = true},
+        {.name = "ray-cast triangles", .triangles_below_px = 1e9},
+        {.name = "no multisampling", .samples = 0},
+        {.name = "sorted ray-cast", .sort = true},
+        {.name = "flat quads < 4 px", .flat_below_px = 4},
+        {.name = "flat points < 4 px", .flat_below_px = 4, .flat_as_points = true},
+        {.name = "flat quads < 8 px", .flat_below_px = 8},
+        {.name = "all flat quads", .flat_below_px = 1e9},
+        {.name = "all flat quads sorted", .flat_below_px = 1e9, .sort = true},
+        {.name = "all flat points", .flat_below_px = 1e9, .flat_as_points = true},
+        {.name = "default", .defaults = true},
+        {.name = "seed: mesh", .spheres = "mesh", .skip_buried = false, .cull_view = false},
+        {.name = "mesh", .spheres = "mesh"},
+    };
+
+    emit("backend,layout,particles,technique,spheres,skip_buried,cull_view,flat_below_px,"
+         "flat_as,sorted,outline,samples,drawn,flat,outside_view,width,height,"
+         "ms_per_frame,fps,cpu_ms,fill_ms,draw_ms,readback_ms,"
+         "mean_diff_vs_raycast,different_pct_vs_raycast,match_vs_raycast");
+    const char* layouts[] = {"block", "close-up", "scattered"};
+    for (std::size_t n : counts)
+        for (const char* layout : layouts) {
+            const bool block = std::strcmp(layout, "scattered") != 0;
+            const bool close_up = std::strcmp(layout, "close-up") == 0;
+            // The spacing shrinks with the count in a fixed 0.1 m box: the
+            // block's spheres are ~8 px across at 100k, ~4 px at 1M.
+            const double box = 0.1, spacing = box / std::ceil(std::cbrt(double(n)));
+            const Snapshot s = make_particles(n, block, spacing, box);
+            for (const std::string& backend : backends) {
+                auto context = make_gl_context(backend);
+                std::vector<Row> rows;
+                for (const Technique& t : techniques) {
+                    const bool is_reference = &t == &techniques.front();
+                    const bool is_default = t.defaults;
+                    const bool mesh = std::strcmp(t.spheres, "mesh") == 0;
+                    // What each layout is for: every technique on the whole
+                    // block and the gas; culling on the close-up. Meshes
+                    // (the seed's 80 triangles a sphere) stop at 100k.
+                    const bool culling_row = std::strcmp(t.name, "view culling off") == 0;
+                    if (close_up ? !(is_reference || is_default || culling_row) : culling_row)
+                        continue;
+                    if (mesh && (n > 100000 || !block))
+                        continue;
+                    if (tiny && !is_reference && !is_default && !mesh && t.flat_below_px != 4 &&
+                        t.cull_view)
+                        continue;
+                    RenderSettings r;
+                    r.width = width;
+                    r.height = height;
+                    r.dimension = 3;
+                    r.spheres = t.spheres;
+                    r.radius = 0.5 * spacing;
+                    r.range = {0, 2};
+                    r.domain_min = glm::dvec3(0);
+                    r.domain_max = glm::dvec3(box);
+                    r.cull_buried = block && t.skip_buried;
+                    if (!t.defaults) {
+                        r.cull_outside_view = t.cull_view;
+                        r.flat_below_px = t.flat_below_px;
+                        r.flat_as_points = t.flat_as_points;
+                        r.sort_front_to_back = t.sort;
+                        r.conservative_depth = t.conservative_depth;
+                        r.triangles_below_px = t.triangles_below_px;
+                        r.samples = t.samples;
+                    }
+                    if (close_up) {
+                        // Looking into the block past a corner: ~2/3 of its
+                        // surface is outside the view.
+                        r.camera_target = glm::dvec3(0.075, 0.07, 0.07);
+                        r.camera_position =
+                            r.camera_target + 0.07 * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
+                    } else {
+                        // The whole box in view but for the block's nearest
+                        // bottom corner.
+                        r.camera_target = glm::dvec3(0.05);
+                        r.camera_position =
+                            glm::dvec3(0.05) + 0.2 * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
+                    }
+                    rows.push_back(
+                        {&t, std::make_unique<FrameRenderer>(r), {}, {}, {}, {}, {}, {}});
+                    rows.back().renderer->render(s); // warm-up: shader compilation, buffers
+                }
+                // Round-robin over the techniques, so that a change in the load
+                // of this shared machine touches all of them alike; the median
+                // of each technique's frames.
+                double round_seconds = 0;
+                for (const Row& row : rows)
+                    round_seconds += row.renderer->last_timings().draw_seconds;
+                const int rounds = tiny ? 1 : round_seconds > 20 ? 3 : 5;
+                for (int round = 0; round < rounds; ++round)
+                    for (Row& row : rows) {
+                        const auto start = std::chrono::steady_clock::now();
+                        const double cpu_start = cpu_ms();
+                        row.image = row.renderer->render(s);
+                        row.ms.push_back(std::chrono::duration<double, std::milli>(
+                                             std::chrono::steady_clock::now() - start)
+                                             .count());
+                        row.cpu_ms.push_back(cpu_ms() - cpu_start);
+                        const FrameTimings& ft = row.renderer->last_timings();
+                        row.fill_ms.push_back(ft.fill_seconds * 1e3);
+                        row.draw_ms.push_back(ft.draw_seconds * 1e3);
+                        row.readback_ms.push_back(ft.readback_seconds * 1e3);
+                    }
+                const Image& reference = rows.front().image;
+                for (Row& row : rows) {
+                    const Technique& t = *row.technique;
+                    const RenderSettings& r = row.renderer->settings();
+                    std::string versus = ",,";
+                    if (&row != &rows.front()) {
+                        const CompareResult c =
+                            compare_images(reference, row.image, CompareOptions{});
+                        versus = fmt::format("{:.2f},{:.2f},{}", c.mean_difference,
+                                             c.different_percent, c.match ? "yes" : "no");
+                    }
+                    const bool flat = r.flat_below_px > 0 && r.spheres == "impostor";
+                    const double ms = median(row.ms);
+                    emit(fmt::format(
+                        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.2f},{:.1f},"
+                        "{:.1f},{:.1f},{:.1f},{}",
+                        backend, layout, n, t.name, t.spheres, r.cull_buried ? "yes" : "no",
+                        r.cull_outside_view ? "yes" : "no",
+                        flat ? fmt::format("{:g}", r.flat_below_px) : "",
+                        flat ? (r.flat_as_points ? "points" : "quads") : "",
+                        r.sort_front_to_back ? "yes" : "no", outline_name(r), r.samples,
+                        row.renderer->last_drawn(), row.renderer->last_flat(),
+                        row.renderer->last_outside_view(), width, height, ms, 1e3 / ms,
+                        median(row.cpu_ms), median(row.fill_ms), median(row.draw_ms),
+                        median(row.readback_ms), versus));
+                    if (!png_folder.empty()) {
+                        std::string name = fmt::format("{}_{}_{}_{}", backend, layout, n, t.name);
+                        for (char& c : name)
+                            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
+                                c = '-';
+                        write_png(std::filesystem::path(png_folder) / (name + ".png"), row.image);
+                    }
                 }
             }
         }
-    }
+    note(fmt::format("load average (1, 5, 15 min) at the end: {}", load_average()));
+    if (csv)
+        std::fclose(csv);
     return 0;
 }

@@ -1,0 +1,56 @@
+// A sphere only a few pixels across (RenderSettings::flat_below_px) as a flat
+// disc facing the eye at the sphere's front, lit as a sphere seen from afar:
+// no ray cast and no depth written, so the rasteriser may test depth before
+// shading. POINTS: one point sprite per sphere; otherwise the impostor's
+// instanced outline.
+#ifndef POINTS
+layout(location = 0) in vec2 a_corner; // outline corner, around the unit circle
+#endif
+layout(location = 1) in vec3 a_centre;  // world space
+layout(location = 2) in float a_scalar; // the coloured field
+
+uniform mat4 u_view;
+uniform mat4 u_projection;
+uniform float u_radius;
+uniform bool u_orthographic;
+uniform sampler1D u_colour_map;
+uniform vec2 u_range;
+uniform float u_viewport_height; // px
+
+#ifdef POINTS
+flat out float v_scale; // disc radii per half point size
+#else
+out vec2 v_disc; // the point in the disc, 1 on the silhouette
+#endif
+flat out vec3 v_colour;
+
+void main() {
+    vec3 centre = (u_view * vec4(a_centre, 1.0)).xyz;
+    vec3 axis_x = vec3(1.0, 0.0, 0.0);
+    vec3 axis_y = vec3(0.0, 1.0, 0.0);
+    vec3 to_eye = vec3(0.0, 0.0, 1.0);
+    float half_size = u_radius;
+    if (!u_orthographic) {
+        // As the impostor's quad, in the plane touching the sphere's front.
+        to_eye = normalize(-centre);
+        vec3 up = abs(to_eye.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+        axis_x = normalize(cross(up, to_eye));
+        axis_y = cross(to_eye, axis_x);
+        float d = length(centre);
+        half_size = u_radius * (d - u_radius) / sqrt(max(d * d - u_radius * u_radius, 1e-20));
+    }
+    vec3 front = centre + u_radius * to_eye;
+    v_colour = map_colour(u_colour_map, u_range, a_scalar);
+#ifdef POINTS
+    gl_Position = u_projection * vec4(front, 1.0);
+    // The disc's radius in pixels: projection[1][1] takes view-space y to
+    // clip space, and one unit of clip y / w is half the viewport's height.
+    float radius_px = half_size * u_projection[1][1] * 0.5 * u_viewport_height / gl_Position.w;
+    gl_PointSize = 2.0 * radius_px + 1.0; // a pixel of room for the disc's off-centre image
+    v_scale = gl_PointSize / (2.0 * radius_px);
+#else
+    v_disc = a_corner;
+    gl_Position =
+        u_projection * vec4(front + half_size * (a_corner.x * axis_x + a_corner.y * axis_y), 1.0);
+#endif
+}

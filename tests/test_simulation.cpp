@@ -1,6 +1,7 @@
 // Whole simulations built from scenes: conservation, walls, frame timing,
 // thread-count determinism (STYLE.md point 14) and the non-finite check.
 #include "io/scene_setup.hpp"
+#include "sph/equation_of_state.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
 
@@ -235,6 +236,57 @@ TEST_CASE("the watchdog flags a particle that jumps past its neighbourhood", "[s
     CHECK_FALSE(inspect_step(sim.params(), sim.state(), 1e-4));
 }
 
+TEST_CASE("Tait's law stores 10/7 c^2 per kilogram at twice the rest density", "[simulation]") {
+    Params<2> p;
+    p.rest_density = 1000;
+    p.bulk_modulus = 2e5;
+    const Real c2 = p.bulk_modulus / p.rest_density;
+    CHECK(compression_energy_tait(p, Real(2000)) == Approx(10.0 / 7 * c2));
+    CHECK(compression_energy_tait(p, Real(1000)) == 0);
+    CHECK(compression_energy_tait(p, Real(500)) == 0); // clamped: no tension
+    // The linear law: c^2 (ln 2 - 1/2) at 2 rho0, and tension below rho0.
+    CHECK(compression_energy_linear(p, Real(2000)) == Approx(c2 * (std::log(2.0) - 0.5)));
+    CHECK(compression_energy_linear(p, Real(500)) == Approx(c2 * (std::log(0.5) + 1)));
+}
+
+TEST_CASE("the watchdog allows the speed a compressed start can release", "[simulation]") {
+    // The block listed twice: every particle has a twin, twice the rest density.
+    Scene scene = small_dam_break({{"solver.name", "wcsph"}});
+    scene.fluid.blocks.push_back(scene.fluid.blocks.front());
+    const Derived derived = derive(scene);
+    auto sim = make_simulation<2>(scene, derived);
+    Real densest = 0;
+    for (Real rho : sim.state().density)
+        densest = std::max(densest, rho);
+    CHECK(densest == Approx(2 * scene.material.rest_density).epsilon(0.01));
+    const Real released =
+        std::sqrt(2 * compression_energy_tait(sim.params(), densest)); // about 1.7 c
+    CHECK(sim.params().watchdog.max_speed == Approx(derived.max_speed + 2 * released));
+    CHECK(released > derived.sound_speed);
+    // wcsph lets it expand: the run goes on.
+    sim.advance_to(0.02);
+    CHECK(sim.time() == Approx(0.02));
+
+    // A limit the scene sets is the limit.
+    scene.watchdog.max_speed = 40;
+    CHECK(make_simulation<2>(scene, derive(scene)).params().watchdog.max_speed == 40);
+
+    // dfsph, incompressible, cannot start from it, and says so.
+    scene.watchdog.max_speed.reset();
+    scene.solver.name = "dfsph";
+    auto incompressible = make_simulation<2>(scene, derive(scene));
+    CHECK(incompressible.params().watchdog.max_speed == Approx(derived.max_speed));
+    try {
+        incompressible.advance_to(0.02);
+        FAIL("no UnstableError");
+    } catch (const UnstableError& e) {
+        const std::string message = e.what();
+        INFO(message);
+        CHECK(message.find("The fluid started compressed, particle ") != std::string::npos);
+        CHECK(message.find(" at 2 times the rest density") != std::string::npos);
+    }
+}
+
 TEST_CASE("a block without gravity or walls keeps its momentum and centre", "[simulation]") {
     // No effects and walls far away: the surface contracts (the seed's linear
     // law pulls where density is below rest), the block as a whole stays.
@@ -300,32 +352,35 @@ TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][
         return stage_names(sim.stage_times());
     };
     // The seed: reflecting walls, its pair force (pressure, then its viscous
-    // term as the viscosity effect), gravity.
+    // term as the viscosity effect), gravity; the particles sorted by cell
+    // on the first step (solver.reorder_every).
     CHECK(stages_of({}) == Names{"boundary", "density", "gravity", "integration",
-                                 "neighbour search", "pressure", "time step", "viscosity",
-                                 "watchdog"});
+                                 "neighbour search", "pressure", "reorder", "time step",
+                                 "viscosity", "watchdog"});
     // No effects and no viscosity: no gravity or viscosity stage. A fixed
-    // step: no time-step rule.
-    CHECK(stages_of({{"effects", "{}"}, {"solver.dt", "1e-4"}, {"material.viscosity", "0"}}) ==
-          Names{"boundary", "density", "integration", "neighbour search", "pressure",
-                "watchdog"});
+    // step: no time-step rule. Never sorted: no reorder stage.
+    CHECK(stages_of({{"effects", "{}"},
+                     {"solver.dt", "1e-4"},
+                     {"material.viscosity", "0"},
+                     {"solver.reorder_every", "0"}}) ==
+          Names{"boundary", "density", "integration", "neighbour search", "pressure", "watchdog"});
     // wcsph: wall particles, Tait pressure, Morris viscosity and the
     // artificial one it has by default.
     CHECK(stages_of({{"solver.name", "wcsph"}}) ==
           Names{"artificial_viscosity", "boundary", "density", "gravity", "integration",
-                "neighbour search", "pressure", "time step", "viscosity", "watchdog"});
+                "neighbour search", "pressure", "reorder", "time step", "viscosity", "watchdog"});
     // Every viscosity effect named, with an inviscid material.
     CHECK(stages_of({{"solver.name", "wcsph"},
                      {"material.viscosity", "0"},
                      {"effects", R"({"viscosity": {"mu": 0.5, "model": "seed"},
                                      "artificial_viscosity": {"alpha": 0},
                                      "xsph": {"epsilon": 0.3}})"}}) ==
-          Names{"boundary", "density", "integration", "neighbour search", "pressure", "time step",
-                "viscosity", "watchdog", "xsph"});
+          Names{"boundary", "density", "integration", "neighbour search", "pressure", "reorder",
+                "time step", "viscosity", "watchdog", "xsph"});
     // dfsph without viscosity: its two solves, no viscosity stage.
     CHECK(stages_of({{"solver.name", "dfsph"}, {"material.viscosity", "0"}}) ==
           Names{"boundary", "density", "divergence solve", "gravity", "integration",
-                "neighbour search", "pressure solve", "time step", "watchdog"});
+                "neighbour search", "pressure solve", "reorder", "time step", "watchdog"});
 }
 
 TEST_CASE("a field no output reads is not computed, and the run is the same", "[simulation][fields]") {

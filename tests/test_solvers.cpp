@@ -301,17 +301,43 @@ TEST_CASE("wcsph: a thin fluid at rest does not squirt along its walls", "[solve
     // The 2D tank at a tenth of the shipped viscosity. Without artificial
     // viscosity against the wall particles, particles that came close to a
     // wall (where the smooth kernels' gradients fade) shot along it at
-    // 0.8 m/s within 0.15 s and climbed the side walls.
+    // 0.8 m/s within 0.15 s and climbed the side walls; with no artificial
+    // viscosity at all, the whole tank churns at 2-3 m/s.
+    // Measured: over the first 0.2 s (the tank settling from its uniform
+    // start) every summation order (either search, any reordering) gives the
+    // same motion to 2 digits, at most 0.22 m/s along the walls. After that
+    // this coarse, barely viscous tank grows noise: its kinetic energy
+    // doubles or triples by 0.3 s, in bursts whose peaks depend on the order
+    // of summation (the fastest particle 0.58-0.93 m/s). A bound on those
+    // peaks would be marginal, so the squirt is checked in the first 0.2 s,
+    // and the whole run against what no noise can do at rest.
+    const Real spacing = 0.004, width = 0.2, depth = 0.1;
     auto sim = make_simulation<2>(default_scene({{"solver.name", "wcsph"},
                                                  {"material.viscosity", "0.01"},
                                                  {"fluid.spacing", "0.004"},
                                                  {"domain.max", "[0.2,0.15]"},
                                                  {"fluid.blocks.0.max", "[0.2,0.1]"}}));
-    Real fastest = 0;
-    for (int k = 1; k <= 8; ++k) {
-        sim.advance_to(0.05 * k);
-        for (const auto& v : sim.state().velocity)
+    Real along_walls = 0, fastest = 0, highest = 0;
+    for (int k = 1; k <= 20; ++k) {
+        sim.advance_to(0.02 * k);
+        const State<2>& s = sim.state();
+        for (std::size_t i = 0; i < s.size(); ++i) {
+            const Vec<2> x = s.position[i], v = s.velocity[i];
+            if (k <= 10 && std::min(x.x, width - x.x) < 2 * spacing)
+                along_walls = std::max(along_walls, std::abs(v.y));
+            if (k <= 10 && x.y < 2 * spacing)
+                along_walls = std::max(along_walls, std::abs(v.x));
             fastest = std::max(fastest, glm::length(v));
+            highest = std::max(highest, x.y);
+        }
     }
-    CHECK(fastest < 0.75);
+    // Settling is acoustic, c times the density noise: 14 m/s x 1.5% =
+    // 0.2 m/s; the squirt was 0.8.
+    CHECK(along_walls < 0.4);
+    // Nothing climbs the walls: the top row starts half a spacing below the
+    // block's top face, and a spacing above it is a particle thrown up.
+    CHECK(highest < depth + spacing);
+    // A fluid at rest has no energy for more than a fall from its surface to
+    // the floor, sqrt(2 g depth) = 1.4 m/s.
+    CHECK(fastest < std::sqrt(2 * 9.81 * depth));
 }

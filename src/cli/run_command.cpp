@@ -159,7 +159,7 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
           {"mass", derived.mass},
           {"dt", derived.dt},
           {"sound_speed", derived.sound_speed},
-          {"max_speed", derived.max_speed}}},
+          {"max_speed", sim.params().watchdog.max_speed}}},
         {"particles", sim.state().size()},
         {"threads", omp_get_max_threads()},
         {"solver", std::string(sim.solver().name())},

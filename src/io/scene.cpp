@@ -964,6 +964,11 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
                                     "tanks).");
     s.solver.neighbour_search = r.choice("solver.neighbour_search", d.solver.neighbour_search,
                                          neighbour_search_names(), "Neighbour search.");
+    s.solver.reorder_every =
+        r.integer("solver.reorder_every", d.solver.reorder_every, 0, 1000000,
+                  "Steps between spatial sorts of the particle arrays by grid cell (Morton "
+                  "order), which keep neighbours near in memory; 0: never. Changes "
+                  "round-off only.");
 
     s.watchdog.retries =
         r.integer("watchdog.retries", d.watchdog.retries, 0, 20,
@@ -981,8 +986,9 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.watchdog.max_speed = r.optional_number(
         "watchdog.max_speed", "m/s", "auto",
         "Speed above which a step counts as failed. Default: twice the sum of the sound "
-        "speed, the speed of a fall over the whole domain and the fastest initial, "
-        "emitter or paddle velocity.",
+        "speed, the speed of a fall over the whole domain, the fastest initial, "
+        "emitter or paddle velocity, and the speed sqrt(2 e) that the compression energy e "
+        "stored at the start (most at the densest particle) can release.",
         Bound::positive);
 
     // A scene that gives an `effects` object gets exactly the effects it lists.
@@ -1558,7 +1564,8 @@ json to_json(const Scene& s) {
           {"min_iterations", s.solver.min_iterations},
           {"max_iterations", s.solver.max_iterations},
           {"warm_start", s.solver.warm_start},
-          {"neighbour_search", s.solver.neighbour_search}}},
+          {"neighbour_search", s.solver.neighbour_search},
+          {"reorder_every", s.solver.reorder_every}}},
         {"watchdog",
          {{"retries", s.watchdog.retries},
           {"max_density_ratio", s.watchdog.max_density_ratio},

@@ -106,7 +106,10 @@ struct Scene {
         int min_iterations = 2;                      // dfsph
         int max_iterations = 100;                    // dfsph
         bool warm_start = false;                     // dfsph
-        std::string neighbour_search = "hash"; // hash (the seed's) | sorted_grid | all_pairs
+        // sorted_grid | hash (the seed's) | all_pairs
+        std::string neighbour_search = "sorted_grid";
+        // Steps between spatial sorts of the particle arrays by cell; 0: never.
+        int reorder_every = 20;
     } solver;
 
     // The per-step checks (sph/watchdog.hpp).

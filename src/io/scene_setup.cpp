@@ -69,7 +69,9 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                         scene.solver.min_iterations, scene.solver.max_iterations,
                         scene.solver.warm_start};
     p.watchdog = {scene.watchdog.retries, scene.watchdog.max_density_ratio,
-                  scene.watchdog.max_displacement, derived.max_speed};
+                  scene.watchdog.max_displacement, derived.max_speed,
+                  !scene.watchdog.max_speed.has_value()};
+    p.reorder_every = scene.solver.reorder_every;
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     p.obstacles = make_obstacles<D>(scene);
     p.paddles = make_paddles<D>(scene);

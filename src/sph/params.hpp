@@ -45,6 +45,9 @@ struct WatchdogSettings {
     Real max_density_ratio = 10; // rho / rho0 above which the fluid is collapsing
     Real max_displacement = 1;   // support radii a particle may move in one step
     Real max_speed = std::numeric_limits<Real>::infinity(); // m/s: beyond it, garbage
+    // max_speed is the scene's default: the simulation adds twice the speed
+    // the start's compression can release (Simulation, at its start).
+    bool max_speed_adds_start_energy = false;
 };
 
 template <int D>
@@ -66,6 +69,9 @@ struct Params {
     TimeStepSettings time_step;
     PressureSolveSettings pressure_solve;
     WatchdogSettings watchdog;
+    // Steps between spatial sorts of the particle arrays (by cell, along the
+    // Morton curve), which keep neighbours near in memory; 0: never.
+    int reorder_every = 0;
 
     Real sound_speed() const { return std::sqrt(bulk_modulus / rest_density); }
 };

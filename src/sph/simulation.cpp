@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 
 namespace sph {
 
@@ -52,7 +53,48 @@ Simulation<D>::Simulation(const Params<D>& params, State<D> initial,
                           std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects)
     : params_(params), state_(std::move(initial)), solver_(std::move(solver)),
       search_(std::move(search)), effects_(std::move(effects)),
-      boundary_(add_paddles(params_, make_boundary(params_))) {}
+      boundary_(add_paddles(params_, make_boundary(params_))) {
+    inspect_start();
+}
+
+template <int D>
+void Simulation<D>::inspect_start() {
+    if (state_.size() == 0)
+        return;
+    // Untimed: the stage times are the run's, which starts after this.
+    auto ctx = context();
+    ctx.stages = nullptr;
+    ctx.place_paddles(params_, time_);
+    solver_->update_fields(params_, state_, ctx);
+    // A compressed start (blocks overlapping, a mass too large for the
+    // spacing) stores energy the equation of state turns into motion: what
+    // it can release is physical speed the watchdog must allow. Only
+    // compression counts: every free surface starts below rho0, where the
+    // seed's linear law stores tension too, and the clumping it releases is
+    // what the watchdog is there to catch.
+    std::size_t densest = 0;
+    for (std::size_t i = 0; i < state_.size(); ++i)
+        if (state_.density[i] > state_.density[densest])
+            densest = i;
+    const Real rho = std::max(state_.density[densest], params_.rest_density);
+    const Real energy = solver_->compression_energy(params_, rho);
+    if (params_.watchdog.max_speed_adds_start_energy)
+        params_.watchdog.max_speed += 2 * std::sqrt(2 * energy);
+    start_density_ratio_ = state_.density[densest] / params_.rest_density;
+    start_densest_id_ = state_.id[densest];
+}
+
+template <int D>
+std::string Simulation<D>::start_cause() const {
+    // 10% above rest density: no liquid starts so compressed on purpose.
+    if (start_density_ratio_ <= 1.1)
+        return {};
+    return fmt::format(
+        "The fluid started compressed, particle {} at {:.3g} times the rest density (fluid "
+        "blocks that overlap, or a fluid.mass too large for fluid.spacing): {} cannot follow "
+        "the motion that compression releases. Start the fluid at its rest density.",
+        start_densest_id_, start_density_ratio_, solver_->name());
+}
 
 template <int D>
 Real Simulation<D>::next_dt() const {
@@ -95,7 +137,33 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
 }
 
 template <int D>
+void Simulation<D>::reorder_particles() {
+    if (params_.reorder_every <= 0)
+        return;
+    // The first step sorts too: a scene's blocks are filled row by row.
+    const bool due = steps_since_reorder_ == 0;
+    steps_since_reorder_ = (steps_since_reorder_ + 1) % params_.reorder_every;
+    if (!due)
+        return;
+    StageTimes::Scope timed(&stages_, "reorder");
+    // From the positions (and memory order) alone, never from the last
+    // find's lists, so that frames and outputs cannot change the order.
+    std::span<const std::uint32_t> order = search_->cell_order(state_.position, params_.h);
+    if (order.size() != state_.size()) {
+        if (!sorter_)
+            sorter_ = make_neighbour_search<D>("sorted_grid");
+        order = sorter_->cell_order(state_.position, params_.h);
+    }
+    state_.permute(order, permute_scratch_);
+    solver_->permute(order);
+    for (const auto& effect : effects_)
+        effect->permute(order);
+}
+
+template <int D>
 void Simulation<D>::step_by(Real dt) {
+    // Between steps, before anything is sized or saved for this one.
+    reorder_particles();
     // Effects that change the particle set (emitters) act first, outside
     // the watchdog's retries, so a retried step keeps what they added.
     for (const auto& effect : effects_) {
@@ -116,7 +184,7 @@ void Simulation<D>::step_by(Real dt) {
             break;
         if (retry >= params_.watchdog.retries)
             throw UnstableError(steps_before + 1, time_, std::move(*problem), retry,
-                                dt / Real(pieces));
+                                dt / Real(pieces), start_cause());
         state_ = saved_;
         steps_ = steps_before;
         counters_ = counters_before;

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 
 namespace sph {
 
@@ -76,8 +77,16 @@ class Simulation {
             ctx.moving_boundary = &*boundary_;
         return ctx;
     }
+    // The fields at the start, and what they mean for the watchdog: the
+    // speed limit grows by what the start's compression can release.
+    void inspect_start();
+    // Why a run that started compressed may have failed; empty otherwise.
+    std::string start_cause() const;
     // Advances by dt under the watchdog (see step()).
     void step_by(Real dt);
+    // Every params.reorder_every steps: the particle arrays (the state's, the
+    // solver's, the effects') sorted by cell, at the current positions.
+    void reorder_particles();
     // Plain steps, checked after each; the first problem found, if any.
     std::optional<StepProblem> try_steps(Real dt, int count);
 
@@ -91,6 +100,13 @@ class Simulation {
     NeighbourList boundary_neighbours_;
     StepCounters counters_;
     State<D> saved_; // the state before the step, for the watchdog's retries
+    Real start_density_ratio_ = 0;        // densest particle at the start, / rho0
+    std::uint32_t start_densest_id_ = 0; // its id
+    // The spatial sort: a grid of its own when the search keeps no cell
+    // order (hash, all_pairs), made on first use; scratch for the permutation.
+    std::unique_ptr<NeighbourSearch<D>> sorter_;
+    PermuteScratch<D> permute_scratch_;
+    int steps_since_reorder_ = 0;
     Real time_ = 0;
     std::uint64_t steps_ = 0;
     std::uint64_t fixed_steps_ = 0;

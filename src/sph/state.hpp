@@ -1,14 +1,33 @@
 #pragma once
 // Particle state: one array per field (struct of arrays). Every array is listed
-// in for_each_array, so resizing (and later emitting and spatial sorting)
-// touches all of them. Arrays that only one solver or effect needs live in that
+// in for_each_array, so resizing, emitting and the spatial sort (permute)
+// touch all of them. Arrays that only one solver or effect needs live in that
 // solver or effect, not here.
 
 #include "sph/vec.hpp"
 
+#include <cstdint>
+#include <span>
+#include <tuple>
+#include <type_traits>
 #include <vector>
 
 namespace sph {
+
+// Puts element order[k] of `array` at k; `scratch` takes the array's old
+// memory, so that repeated calls allocate nothing once sizes settle.
+template <class T>
+void permute(std::vector<T>& array, std::span<const std::uint32_t> order, std::vector<T>& scratch) {
+    scratch.resize(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k)
+        scratch[k] = array[order[k]];
+    array.swap(scratch);
+}
+
+// One scratch array per element type of State (see State::permute).
+template <int D>
+using PermuteScratch =
+    std::tuple<std::vector<Vec<D>>, std::vector<Real>, std::vector<std::uint32_t>>;
 
 template <int D>
 struct State {
@@ -35,6 +54,15 @@ struct State {
 
     void resize(std::size_t n) {
         for_each_array([n](auto& array) { array.resize(n); });
+    }
+
+    // Every array reordered so that particle order[k] comes to k (order is a
+    // permutation of 0 .. size()-1); ids travel with their particles.
+    void permute(std::span<const std::uint32_t> order, PermuteScratch<D>& scratch) {
+        for_each_array([&](auto& array) {
+            using Array = std::remove_reference_t<decltype(array)>;
+            sph::permute(array, order, std::get<Array>(scratch));
+        });
     }
 };
 

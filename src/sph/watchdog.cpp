@@ -33,11 +33,12 @@ std::string advice(const StepProblem& p) {
 } // namespace
 
 UnstableError::UnstableError(std::uint64_t step_, Real time_, StepProblem problem_, int retries_,
-                             Real dt_)
+                             Real dt_, const std::string& cause)
     : std::runtime_error(
           fmt::format("simulation unstable at step {} (t = {:.6g} s): {}; the step was retried "
-                      "{} times, halving it down to dt = {:.3g} s. {}",
-                      step_, time_, describe(problem_), retries_, dt_, advice(problem_))),
+                      "{} times, halving it down to dt = {:.3g} s. {}{}{}",
+                      step_, time_, describe(problem_), retries_, dt_, cause,
+                      cause.empty() ? "" : " ", advice(problem_))),
       step(step_), time(time_), problem(std::move(problem_)), retries(retries_), dt(dt_) {}
 
 template <int D>

@@ -41,7 +41,10 @@ struct UnstableError : std::runtime_error {
     StepProblem problem;
     int retries; // times the step was halved and retried
     Real dt;     // s, the smallest step tried
-    UnstableError(std::uint64_t step, Real time, StepProblem problem, int retries, Real dt);
+    // `cause`, when known, says what in the scene led there; it comes before
+    // the advice.
+    UnstableError(std::uint64_t step, Real time, StepProblem problem, int retries, Real dt,
+                  const std::string& cause = {});
 };
 
 } // namespace sph

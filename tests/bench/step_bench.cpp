@@ -6,13 +6,19 @@
 // limit of the smallest support) is stable everywhere and every configuration
 // of a size runs the same steps. Scene defaults otherwise: gravity, viscosity
 // 1 Pa.s, the solver's walls (reflecting for seed, wall particles for wcsph
-// and dfsph), with each neighbour search (hash, the default, and sorted_grid).
+// and dfsph), with each neighbour search (sorted_grid, the default, and hash)
+// and with the particle arrays sorted by cell every few steps or never
+// (solver.reorder_every; "+reorderN" after the search's name, nothing: never).
 //
 // Then the "DualSPHysics-comparable" case: the 2D wcsph dam break with the
 // Wendland C2 kernel, support 2.82 dp (20 neighbours on the lattice, 21 with
 // the particle itself), the Verlet integrator, artificial viscosity only,
-// ~21,000 fluid particles, with both neighbour searches; its rate is compared
+// ~21,000 fluid particles, with both neighbour searches and reorderings; its rate is compared
 // with DualSPHysics 5.0's ~0.6 M particle-steps/s (2 threads, same machine).
+//
+// With --shuffled, every case runs again from particle arrays in a random
+// (fixed) order, as after the particles of a long run have mixed: what the
+// sort by cell is for ("-shuffled" after the case's name).
 //
 // Per configuration: wall time of the timed steps (after one untimed warm-up
 // step that sizes every array), particle-steps per second, the split by stage
@@ -24,7 +30,7 @@
 //
 //   sphclip_bench_step [--quick|--tiny] [--sizes 10000,100000] [--solvers seed,wcsph]
 //                      [--dims 2,3] [--threads 1,2] [--steps N] [--search hash,sorted_grid]
-//                      [--no-dsph] [--csv FILE]
+//                      [--reorder 0,20] [--shuffled] [--no-dsph] [--csv FILE]
 
 #include "io/scene_setup.hpp"
 #include "sph/snapshot.hpp"
@@ -39,6 +45,7 @@
 #include <ctime>
 #include <fmt/format.h>
 #include <fstream>
+#include <numeric>
 #include <omp.h>
 #include <string>
 #include <thread>
@@ -95,6 +102,13 @@ struct Case {
     std::string search;
     bool dsph = false; // the DualSPHysics-comparable case
     int steps = 0;
+    int reorder = 0; // solver.reorder_every
+    bool shuffled = false;
+
+    // The search's name, with the reordering when there is one.
+    std::string search_label() const {
+        return reorder > 0 ? fmt::format("{}+reorder{}", search, reorder) : search;
+    }
 };
 
 struct Stage {
@@ -131,6 +145,7 @@ std::vector<Override> overrides(const Case& c) {
         {"solver.name", c.solver},
         {"solver.dt", num(dt)},
         {"solver.neighbour_search", c.search},
+        {"solver.reorder_every", std::to_string(c.reorder)},
         {"fluid.spacing", num(spacing)},
         {"domain.min", origin},
         {"domain.max", fmt::format("[{:.17g}, {:.17g}{}]", 3 * a, 2.4 * a, depth)},
@@ -148,8 +163,25 @@ std::vector<Override> overrides(const Case& c) {
     return o;
 }
 
+// A random order, the same on every run (no library distribution: their
+// algorithms differ between standard libraries).
 template <int D>
-Result run(const Scene& scene, int threads, int steps) {
+void shuffle(State<D>& state) {
+    std::vector<std::uint32_t> order(state.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::uint64_t x = 0x9e3779b97f4a7c15u;
+    for (std::size_t k = order.size(); k > 1; --k) {
+        x ^= x << 13; // xorshift64
+        x ^= x >> 7;
+        x ^= x << 17;
+        std::swap(order[k - 1], order[x % k]);
+    }
+    PermuteScratch<D> scratch;
+    state.permute(order, scratch);
+}
+
+template <int D>
+Result run(const Scene& scene, int threads, int steps, bool shuffled) {
     omp_set_num_threads(threads);
     Result r;
     r.threads = threads;
@@ -157,6 +189,8 @@ Result run(const Scene& scene, int threads, int steps) {
     reset_peak_rss();
     const auto setup_start = std::chrono::steady_clock::now();
     auto sim = make_simulation<D>(scene);
+    if (shuffled)
+        shuffle(sim.state());
     sim.step(); // warm-up: neighbour lists, scratch and the watchdog's copy sized
     r.setup_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count();
@@ -248,21 +282,23 @@ std::string machine() {
 }
 
 int usage() {
-    fmt::print(stderr, "usage: sphclip_bench_step [--quick|--tiny] [--sizes N,N] [--solvers "
-                       "seed,wcsph,dfsph] [--dims 2,3] [--threads 1,2] [--steps N] [--search "
-                       "hash,sorted_grid] [--no-dsph] [--csv FILE]\n");
+    fmt::print(stderr,
+               "usage: sphclip_bench_step [--quick|--tiny] [--sizes N,N] [--solvers "
+               "seed,wcsph,dfsph] [--dims 2,3] [--threads 1,2] [--steps N] [--search "
+               "hash,sorted_grid] [--reorder 0,20] [--shuffled] [--no-dsph] [--csv FILE]\n");
     return 2;
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    bool quick = false, dsph = true;
+    bool quick = false, dsph = true, shuffled = false;
     int steps = 0; // 0: by size (below)
     std::vector<std::size_t> sizes{10000, 100000, 1000000};
     std::vector<std::string> solvers{"seed", "wcsph", "dfsph"};
     std::vector<int> dims{2, 3}, thread_counts{1, 2};
-    std::vector<std::string> searches{"hash", "sorted_grid"};
+    std::vector<std::string> searches{"sorted_grid", "hash"};
+    std::vector<int> reorders{0, Scene{}.solver.reorder_every};
     std::FILE* csv = nullptr;
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
@@ -271,6 +307,8 @@ int main(int argc, char** argv) {
             quick = true;
         } else if (arg == "--no-dsph") {
             dsph = false;
+        } else if (arg == "--shuffled") {
+            shuffled = true;
         } else if (arg == "--sizes" && has_value) {
             sizes.clear();
             for (const auto& s : split(argv[++k]))
@@ -289,6 +327,10 @@ int main(int argc, char** argv) {
             steps = std::atoi(argv[++k]);
         } else if (arg == "--search" && has_value) {
             searches = split(argv[++k]);
+        } else if (arg == "--reorder" && has_value) {
+            reorders.clear();
+            for (const auto& s : split(argv[++k]))
+                reorders.push_back(std::atoi(s.c_str()));
         } else if (arg == "--csv" && has_value) {
             csv = std::fopen(argv[++k], "w");
             if (!csv)
@@ -314,13 +356,21 @@ int main(int argc, char** argv) {
     };
     std::vector<Case> cases;
     for (const auto& search : searches)
-        for (const auto& solver : solvers)
-            for (int d : dims)
-                for (std::size_t n : sizes)
-                    cases.push_back({solver, d, n, search, false, steps_for(n)});
+        for (int reorder : reorders)
+            for (const auto& solver : solvers)
+                for (int d : dims)
+                    for (std::size_t n : sizes)
+                        cases.push_back({solver, d, n, search, false, steps_for(n), reorder});
     if (dsph)
         for (const char* s : {"hash", "sorted_grid"})
-            cases.push_back({"wcsph", 2, quick ? 300u : 21000u, s, true, steps > 0 ? steps : 200});
+            for (int reorder : reorders)
+                cases.push_back(
+                    {"wcsph", 2, quick ? 300u : 21000u, s, true, steps > 0 ? steps : 200, reorder});
+    if (shuffled)
+        for (std::size_t k = 0, count = cases.size(); k < count; ++k) {
+            cases.push_back(cases[k]);
+            cases.back().shuffled = true;
+        }
 
     const std::string header = machine();
     fmt::print("full-step benchmark: {}\nfixed dt {} s, spacing {} m, one warm-up step "
@@ -347,22 +397,23 @@ int main(int argc, char** argv) {
         std::uint64_t first_hash = 0;
         bool have_first = false;
         for (int threads : thread_counts) {
-            const Result r = c.dimension == 2 ? run<2>(scene, threads, c.steps)
-                                              : run<3>(scene, threads, c.steps);
+            const Result r = c.dimension == 2 ? run<2>(scene, threads, c.steps, c.shuffled)
+                                              : run<3>(scene, threads, c.steps, c.shuffled);
             if (!have_first) {
                 first_hash = r.hash;
                 have_first = true;
             }
             const bool same = r.hash == first_hash;
             all_same = all_same && same;
-            const std::string label = c.dsph ? "dsph-like" : "grid";
+            const std::string label =
+                std::string(c.dsph ? "dsph-like" : "grid") + (c.shuffled ? "-shuffled" : "");
             const std::string same_text = threads == thread_counts.front() ? "-"
                                           : same                           ? "yes"
                                                                            : "NO";
             fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {:.2f} | {:.3f} | {:.0f} | "
                        "{:.1f} | {:.0f}, {:.0f} | {:.0f} | {} | {} |\n",
-                       label, c.solver, c.dimension, c.search, r.particles, r.boundary, threads,
-                       r.steps, r.wall_s, r.rate() * 1e-6, 1e9 / r.rate(), r.neighbours,
+                       label, c.solver, c.dimension, c.search_label(), r.particles, r.boundary,
+                       threads, r.steps, r.wall_s, r.rate() * 1e-6, 1e9 / r.rate(), r.neighbours,
                        r.array_bytes, r.rss_bytes, r.peak_rss / 1048576, same_text,
                        stage_summary(r, 4));
             if (c.dsph)
@@ -374,10 +425,10 @@ int main(int argc, char** argv) {
                 fmt::print(csv,
                            "{},{},{},{},{},{},{},{},{},{:.3f},{:.4f},{:.0f},{:.1f},{:.2f},{:.0f},"
                            "{:.0f},{:.1f},{:016x},{},\"{}\"\n",
-                           label, c.solver, c.dimension, c.search, r.particles, r.boundary, threads,
-                           r.steps, r.retries, r.setup_s, r.wall_s, r.rate(), 1e9 / r.rate(),
-                           r.neighbours, r.array_bytes, r.rss_bytes, r.peak_rss / 1048576, r.hash,
-                           same_text, stage_csv(r));
+                           label, c.solver, c.dimension, c.search_label(), r.particles, r.boundary,
+                           threads, r.steps, r.retries, r.setup_s, r.wall_s, r.rate(),
+                           1e9 / r.rate(), r.neighbours, r.array_bytes, r.rss_bytes,
+                           r.peak_rss / 1048576, r.hash, same_text, stage_csv(r));
                 std::fflush(csv);
             }
             std::fflush(stdout);

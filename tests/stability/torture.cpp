@@ -13,11 +13,16 @@ namespace sph::torture {
 const std::vector<Case>& cases() {
     static const std::vector<Case> all{
         {"coincident_pair.json"},
-        // Tait's pressure at twice or four times the rest density, and
-        // dfsph's projection of particles stacked on each other, drive
-        // particles past the watchdog's speed limit within a few steps.
-        {"duplicated_block.json", false, 0, {"wcsph", "dfsph"}},
-        {"compressed_start.json", false, 0, {"wcsph", "dfsph"}},
+        // Stacked particles: twice and four times the rest density. wcsph
+        // releases the compression as the motion Tait's law stores for it;
+        // dfsph, incompressible, cannot start from a compressed fluid and
+        // must say so. At four times (97 c^2 per kilogram) a particle thrown
+        // out at 250 m/s gains speed each time it crosses the fluid (the
+        // explicit step over Tait's stiff repulsion), until it reaches the
+        // limit near 0.1 s or not, depending on round-off: wcsph may stop,
+        // saying why.
+        {"duplicated_block.json", true, 0, {"dfsph"}, "started compressed"},
+        {"compressed_start.json", true, 0, {"dfsph"}, "started compressed", {"wcsph"}},
         {"sparse_start.json"},
         {"impact_20ms.json"},
         {"tall_drop.json"},
@@ -28,7 +33,7 @@ const std::vector<Case>& cases() {
         {"thin_sheet.json", true, 0, {"seed"}},
         {"far_from_origin.json"},
         {"negative_coordinates.json"},
-        {"one_cell.json", true, 0, {"dfsph"}},
+        {"one_cell.json"},
         {"tank_at_rest.json", true, 0.1},
         {"drop_3d.json", true, 0, {"seed"}},
     };
@@ -42,31 +47,16 @@ Real gravity_along(const Scene& scene, int axis) {
     return scene.effects.gravity ? (*scene.effects.gravity)[axis] : 0;
 }
 
-// Energy stored per unit mass by compression, J/kg: e = integral from rho0 to
-// rho of p / rho'^2, for the solver's equation of state
-// (sph/equation_of_state.hpp). dfsph is incompressible: none.
-template <int D>
-double internal_energy(const std::string& solver, const Params<D>& p, double rho) {
-    const double rho0 = p.rest_density, K = p.bulk_modulus;
-    if (solver == "seed") // p = K (rho - rho0) / rho0, negative below rho0
-        return K / rho0 * (std::log(rho / rho0) + rho0 / rho - 1);
-    if (solver == "wcsph") { // Tait, B = K / 7, clamped to 0 below rho0
-        if (rho <= rho0)
-            return 0;
-        const double B = K / 7;
-        return B * ((std::pow(rho / rho0, 6) - 1) / (6 * rho0) + 1 / rho - 1 / rho0);
-    }
-    return 0;
-}
-
 // Kinetic + potential + compression energy, J (per metre of depth in 2D).
+// The compression energy is the solver's equation of state's
+// (Solver::compression_energy; none for dfsph, which is incompressible).
 template <int D>
-double total_energy(const Scene& scene, const std::string& solver, const Params<D>& params,
+double total_energy(const Scene& scene, const Solver<D>& solver, const Params<D>& params,
                     const State<D>& state) {
     double e = 0;
     for (std::size_t i = 0; i < state.size(); ++i) {
         e += params.mass * (0.5 * squared_length<D>(state.velocity[i]) +
-                            internal_energy(solver, params, state.density[i]));
+                            solver.compression_energy(params, state.density[i]));
         for (int a = 0; a < D; ++a)
             e -= params.mass * gravity_along<D>(scene, a) *
                  (state.position[i][a] - params.domain.min[a]);
@@ -96,13 +86,13 @@ Result run_scene(const Scene& scene, const Case& c, const std::string& solver) {
     sim.update_fields();
     for (std::size_t i = 0; i < count; ++i) {
         v0 = std::max<double>(v0, glm::length(sim.state().velocity[i]));
-        const double e = internal_energy(solver, p, sim.state().density[i]);
+        const double e = sim.solver().compression_energy(p, sim.state().density[i]);
         e_max = std::max(e_max, e);
         e_sum += e;
     }
     r.speed_limit = 3 * std::sqrt(2 * (g * height + e_max)) + 2 * v0;
 
-    const double e0 = total_energy(scene, solver, p, sim.state());
+    const double e0 = total_energy(scene, sim.solver(), p, sim.state());
     const double energy_scale =
         p.mass * (double(count) * (g * height + 0.5 * v0 * v0) + e_sum) + 1e-300;
     r.dt_min = std::numeric_limits<double>::infinity();
@@ -145,7 +135,7 @@ Result run_scene(const Scene& scene, const Case& c, const std::string& solver) {
             if (!(stats.max_speed <= r.speed_limit))
                 warn(fmt::format("t = {:.3g} s: max speed {:.4g} m/s above the limit {:.4g}", t,
                                  stats.max_speed, r.speed_limit));
-            const double growth = (total_energy(scene, solver, p, s) - e0) / energy_scale;
+            const double growth = (total_energy(scene, sim.solver(), p, s) - e0) / energy_scale;
             r.energy_growth = std::max(r.energy_growth, growth);
             if (c.closed && !(growth <= 0.02))
                 warn(fmt::format("t = {:.3g} s: total energy grew by {:.3g} of its scale", t,
@@ -175,11 +165,17 @@ Result run_scene(const Scene& scene, const Case& c, const std::string& solver) {
 
 bool Result::passed(const Case& c) const {
     const bool expected_stop = std::find(c.stops.begin(), c.stops.end(), solver) != c.stops.end();
+    const bool stop_allowed =
+        std::find(c.may_stop.begin(), c.may_stop.end(), solver) != c.may_stop.end();
     // The seed may also be stopped cleanly anywhere: its clumping makes
     // speed spikes that a different summation order can push past the limit.
     if (solver == "seed")
         return failures.empty();
-    return failures.empty() && warnings.empty() && stop.empty() != expected_stop;
+    const bool stop_explained = stop.find(c.stop_reason) != std::string::npos;
+    if (stop_allowed && !stop.empty())
+        return failures.empty() && warnings.empty() && stop_explained;
+    return failures.empty() && warnings.empty() && stop.empty() != expected_stop &&
+           (!expected_stop || stop_explained);
 }
 
 Result run(const std::filesystem::path& folder, const Case& c, const std::string& solver) {

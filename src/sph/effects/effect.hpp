@@ -8,7 +8,9 @@
 #include "sph/params.hpp"
 #include "sph/state.hpp"
 
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -48,6 +50,11 @@ class Effect {
     // Bytes of the arrays it keeps (its own per-particle arrays, its
     // sites); an effect the scene does not name is not built and holds none.
     virtual std::size_t bytes() const { return 0; }
+    // The particle arrays were reordered between steps (State::permute with
+    // `order`): per-particle arrays kept from one step to the next must
+    // follow. Nothing to do for an effect that keeps none, or that
+    // recomputes its arrays every step (surface tension's normals).
+    virtual void permute(std::span<const std::uint32_t> /*order*/) {}
 };
 
 template <int D>

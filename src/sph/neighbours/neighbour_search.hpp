@@ -5,6 +5,7 @@
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/vec.hpp"
 
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -21,6 +22,14 @@ class NeighbourSearch {
     // Lists, for every particle, the other particles closer than `radius`
     // (strictly). Reuses the memory of `out` and of the search between calls.
     virtual void find(std::span<const Vec<D>> positions, Real radius, NeighbourList& out) = 0;
+    // The particle indices in the order of cells of size `radius` at these
+    // positions (the permutation a spatial sort of the particle arrays
+    // applies), valid until the next call; empty when the search keeps no
+    // cells in an order worth sorting by. Lists nothing.
+    virtual std::span<const std::uint32_t> cell_order(std::span<const Vec<D>> /*positions*/,
+                                                      Real /*radius*/) {
+        return {};
+    }
 };
 
 // Names accepted by make_neighbour_search, in the order the README lists them.

@@ -484,6 +484,20 @@ void SortedGrid<D>::find(std::span<const Vec<D>> positions, Real radius, Neighbo
     timings_.query_seconds = seconds_since(query);
 }
 
+template <int D>
+std::span<const std::uint32_t> SortedGrid<D>::cell_order(std::span<const Vec<D>> positions,
+                                                         Real radius) {
+    if (positions.size() >= std::numeric_limits<std::uint32_t>::max())
+        throw std::length_error("sorted_grid: more than 2^32 particles");
+    if (positions.empty() || !(radius > 0)) {
+        order_.resize(positions.size());
+        std::iota(order_.begin(), order_.end(), 0u);
+    } else {
+        sort_into_cells(positions, radius);
+    }
+    return order_;
+}
+
 template class SortedGrid<2>;
 template class SortedGrid<3>;
 

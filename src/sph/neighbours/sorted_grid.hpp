@@ -32,6 +32,11 @@ class SortedGrid final : public NeighbourSearch<D> {
     // spatial sort of the particle arrays applies. The identity after a find
     // with a radius of zero.
     const std::vector<std::uint32_t>& order() const { return order_; }
+    // Sorts into cells only (no lists; the next find sorts again) and
+    // returns order(): cells along the Morton curve, a cell's particles by
+    // index, so it depends on the positions and the current memory order only.
+    std::span<const std::uint32_t> cell_order(std::span<const Vec<D>> positions,
+                                              Real radius) override;
 
     // Whether the last find hashed the occupied cells (a sparse or huge box)
     // instead of indexing a table by Morton code.

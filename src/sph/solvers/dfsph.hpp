@@ -29,6 +29,13 @@ class DfsphSolver final : public Solver<D> {
     StepReport step(const Params<D>& params, Real dt, State<D>& state,
                     StepContext<D>& context) override;
     void update_fields(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
+    // The warm start's stiffnesses follow their particles; the other arrays
+    // are recomputed every step.
+    void permute(std::span<const std::uint32_t> order) override {
+        for (std::vector<Real>* kept : {&previous_stiffness_, &previous_divergence_})
+            if (kept->size() == order.size())
+                sph::permute(*kept, order, permute_scratch_);
+    }
 
     // Mean compression, in percent, the last density solve ended with.
     Real last_density_error_pct() const { return last_density_error_pct_; }
@@ -53,6 +60,7 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Real> divergence_sum_; // s_i summed over the divergence solve
     std::vector<Real> previous_stiffness_, previous_divergence_; // last step's sums
     Real previous_dt_ = 0;
+    std::vector<Real> permute_scratch_;
     std::vector<Real> source_;              // the compression rate to remove
     std::vector<Vec<D>> velocity_at_start_; // to restart a diverging solve
     std::vector<Vec<D>> gradient_;          // m grad W_ij per fluid pair (neighbour list order)

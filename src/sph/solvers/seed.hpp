@@ -2,6 +2,7 @@
 // The `seed` solver: the model of the report sphclip grew from
 // (../shared/seed/MODEL.md), kept faithful so results can be compared with it.
 
+#include "sph/equation_of_state.hpp"
 #include "sph/solvers/explicit_solver.hpp"
 
 namespace sph {
@@ -16,6 +17,9 @@ class SeedSolver final : public ExplicitSolver<D> {
     explicit SeedSolver(KernelKind kernel = KernelKind::seed);
     std::string_view name() const override { return "seed"; }
     void update_fields(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
+    Real compression_energy(const Params<D>& params, Real rho) const override {
+        return compression_energy_linear(params, rho);
+    }
 
   protected:
     void compute_accelerations(const Params<D>& params, State<D>& state,

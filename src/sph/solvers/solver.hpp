@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -88,6 +89,14 @@ class Solver {
     // compute them; used for the frame outputs. Moves nothing.
     virtual void update_fields(const Params<D>& params, State<D>& state,
                                StepContext<D>& context) = 0;
+    // Energy per unit mass, J/kg, that the solver's equation of state stores
+    // in fluid at density rho: what a compressed start releases as motion.
+    // None for an incompressible solver.
+    virtual Real compression_energy(const Params<D>& /*params*/, Real /*rho*/) const { return 0; }
+    // The particle arrays were reordered between steps (State::permute with
+    // `order`): per-particle arrays kept from one step to the next must
+    // follow. Nothing to do for a solver that keeps none.
+    virtual void permute(std::span<const std::uint32_t> /*order*/) {}
 };
 
 // Names accepted by make_solver (`solver.name`), in the order the README lists them.

@@ -5,6 +5,7 @@
 // boundary particles (Akinci et al. 2012). The stiffness K (material.bulk_modulus)
 // sets the sound speed c = sqrt(K / rho0); density errors scale like (v / c)^2.
 
+#include "sph/equation_of_state.hpp"
 #include "sph/solvers/explicit_solver.hpp"
 
 namespace sph {
@@ -20,6 +21,9 @@ class WcsphSolver final : public ExplicitSolver<D> {
         return {.carries_sound = true, .sound_speed_exponent = 3};
     }
     void update_fields(const Params<D>& params, State<D>& state, StepContext<D>& context) override;
+    Real compression_energy(const Params<D>& params, Real rho) const override {
+        return compression_energy_tait(params, rho);
+    }
 
   protected:
     void compute_accelerations(const Params<D>& params, State<D>& state,

@@ -1,5 +1,6 @@
 #include "sph/boundary_particles.hpp"
 
+#include "sph/headroom.hpp"
 #include "sph/lattice.hpp"
 
 #include <algorithm>
@@ -251,9 +252,7 @@ void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>> query,
     }
     for (std::size_t i = 0; i < n; ++i)
         out.start[i + 1] += out.start[i];
-    if (out.index.capacity() < out.start[n])
-        out.index.reserve(out.start[n] + out.start[n] / 4);
-    out.index.resize(out.start[n]);
+    resize_with_headroom(out.index, out.start[n]);
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         std::uint32_t* row = out.index.data() + out.start[i];

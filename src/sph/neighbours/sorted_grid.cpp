@@ -1,5 +1,7 @@
 #include "sph/neighbours/sorted_grid.hpp"
 
+#include "sph/headroom.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <chrono>
@@ -153,7 +155,9 @@ typename SortedGrid<D>::Coord SortedGrid<D>::cell_of(const Vec<D>& x) const {
 template <int D>
 void SortedGrid<D>::counting_sort(std::size_t key_count) {
     const std::size_t n = keys_.size();
-    key_start_.assign(key_count + 2, 0);
+    // The fluid's box grows a little at a time (sph/headroom.hpp).
+    resize_with_headroom(key_start_, key_count + 2);
+    std::fill(key_start_.begin(), key_start_.end(), 0);
     for (std::size_t i = 0; i < n; ++i)
         ++key_start_[keys_[i] + 2];
     for (std::size_t k = 2; k < key_start_.size(); ++k)

@@ -1,6 +1,7 @@
 #include "sph/solvers/dfsph.hpp"
 
 #include "sph/boundary.hpp"
+#include "sph/headroom.hpp"
 #include "sph/integrate.hpp"
 #include "sph/obstacles.hpp"
 #include "sph/paddles.hpp"
@@ -43,8 +44,9 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
     stiffness_.resize(n);
     stiffness_sum_.resize(n);
     source_.resize(n);
-    gradient_.resize(context.neighbours.pair_count());
-    wall_gradient_.resize(context.boundary ? context.boundary_neighbours.pair_count() : 0);
+    resize_with_headroom(gradient_, context.neighbours.pair_count());
+    resize_with_headroom(wall_gradient_,
+                         context.boundary ? context.boundary_neighbours.pair_count() : 0);
     // Moving walls: sum_b w_ib . v_b, fixed for the step (v_b is).
     const bool moving = context.boundary && context.boundary->has_moving();
     wall_motion_.resize(moving ? n : 0);

@@ -26,31 +26,20 @@ flat out vec3 v_colour;
 
 void main() {
     vec3 centre = (u_view * vec4(a_centre, 1.0)).xyz;
-    vec3 axis_x = vec3(1.0, 0.0, 0.0);
-    vec3 axis_y = vec3(0.0, 1.0, 0.0);
-    vec3 to_eye = vec3(0.0, 0.0, 1.0);
-    float half_size = u_radius;
-    if (!u_orthographic) {
-        // As the impostor's quad, in the plane touching the sphere's front.
-        to_eye = normalize(-centre);
-        vec3 up = abs(to_eye.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-        axis_x = normalize(cross(up, to_eye));
-        axis_y = cross(to_eye, axis_x);
-        float d = length(centre);
-        half_size = u_radius * (d - u_radius) / sqrt(max(d * d - u_radius * u_radius, 1e-20));
-    }
-    vec3 front = centre + u_radius * to_eye;
+    // As the impostor's outline, in the plane touching the sphere's front.
+    Outline o = sphere_outline(centre, u_radius, u_radius, u_orthographic);
+    vec3 front = centre + u_radius * o.to_eye;
     v_colour = map_colour(u_colour_map, u_range, a_scalar);
 #ifdef POINTS
     gl_Position = u_projection * vec4(front, 1.0);
     // The disc's radius in pixels: projection[1][1] takes view-space y to
     // clip space, and one unit of clip y / w is half the viewport's height.
-    float radius_px = half_size * u_projection[1][1] * 0.5 * u_viewport_height / gl_Position.w;
+    float radius_px = o.half_size * u_projection[1][1] * 0.5 * u_viewport_height / gl_Position.w;
     gl_PointSize = 2.0 * radius_px + 1.0; // a pixel of room for the disc's off-centre image
     v_scale = gl_PointSize / (2.0 * radius_px);
 #else
     v_disc = a_corner;
-    gl_Position =
-        u_projection * vec4(front + half_size * (a_corner.x * axis_x + a_corner.y * axis_y), 1.0);
+    gl_Position = u_projection *
+                  vec4(front + o.half_size * (a_corner.x * o.axis_x + a_corner.y * o.axis_y), 1.0);
 #endif
 }

@@ -18,29 +18,16 @@ flat out vec3 v_colour;
 
 void main() {
     vec3 centre = (u_view * vec4(a_centre, 1.0)).xyz;
-    vec3 axis_x = vec3(1.0, 0.0, 0.0);
-    vec3 axis_y = vec3(0.0, 1.0, 0.0);
-    vec3 to_eye = vec3(0.0, 0.0, 1.0);
-    float half_size = u_radius;
-    // How far in front of the centre the quad lies: at the front, every
-    // ray-cast depth lies behind the quad's (conservative depth).
+    // How far in front of the centre the outline lies: at the front, every
+    // ray-cast depth lies behind the outline's (conservative depth).
 #ifdef CONSERVATIVE_DEPTH
     float front = u_radius;
 #else
     float front = 0.0;
 #endif
-    if (!u_orthographic) {
-        // Face the eye; the cone of rays tangent to the sphere meets the plane
-        // at distance d - front from the eye in a circle of radius
-        // r (d - front) / sqrt(d^2 - r^2).
-        to_eye = normalize(-centre);
-        vec3 up = abs(to_eye.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-        axis_x = normalize(cross(up, to_eye));
-        axis_y = cross(to_eye, axis_x);
-        float d = length(centre);
-        half_size = u_radius * (d - front) / sqrt(max(d * d - u_radius * u_radius, 1e-20));
-    }
-    v_point = centre + front * to_eye + half_size * (a_corner.x * axis_x + a_corner.y * axis_y);
+    Outline o = sphere_outline(centre, u_radius, front, u_orthographic);
+    v_point = centre + front * o.to_eye +
+              o.half_size * (a_corner.x * o.axis_x + a_corner.y * o.axis_y);
     v_centre = centre;
     v_colour = map_colour(u_colour_map, u_range, a_scalar);
     gl_Position = u_projection * vec4(v_point, 1.0);

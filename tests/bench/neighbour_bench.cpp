@@ -9,6 +9,7 @@
 //   build/sphclip_bench_neighbours                   # the full table
 //   build/sphclip_bench_neighbours --csv FILE        # and write it to FILE
 //   build/sphclip_bench_neighbours --quick           # one tiny case each (CI)
+//   build/sphclip_bench_neighbours --compactnsearch  # the 125k 3D case alone
 #include "sph/neighbours/sorted_grid.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
 
@@ -165,14 +166,17 @@ std::string cpu_model() {
 
 int main(int argc, char** argv) {
     bool quick = false;
+    bool peer_case_only = false;
     std::string csv_path;
     for (int k = 1; k < argc; ++k) {
         if (std::strcmp(argv[k], "--quick") == 0)
             quick = true;
+        else if (std::strcmp(argv[k], "--compactnsearch") == 0)
+            peer_case_only = true;
         else if (std::strcmp(argv[k], "--csv") == 0 && k + 1 < argc)
             csv_path = argv[++k];
         else {
-            fmt::print(stderr, "usage: {} [--quick] [--csv FILE]\n", argv[0]);
+            fmt::print(stderr, "usage: {} [--quick | --compactnsearch] [--csv FILE]\n", argv[0]);
             return 2;
         }
     }
@@ -188,17 +192,22 @@ int main(int argc, char** argv) {
         "search,dimension,particles,layout,threads,radius_dp,repetitions,ms,build_ms,query_ms,"
         "pairs,mpairs_per_s\n",
         date, std::thread::hardware_concurrency(), cpu_model(), __GNUC__, __GNUC_MINOR__,
-        quick ? "--quick" : "full");
+        quick ? "--quick" : peer_case_only ? "--compactnsearch" : "full");
     fmt::print("{}", header);
 
     const int before = omp_get_max_threads();
     std::vector<Row> rows;
     bool agree = true;
     // 3D: ~10k, ~100k, 125k (CompactNSearch's case) and 1M particles; 2D: ~10k, ~100k, 1M.
+    // --compactnsearch: the 125k 3D case alone, the one compared with the peer.
     const std::vector<std::size_t> sides3 =
-        quick ? std::vector<std::size_t>{8} : std::vector<std::size_t>{22, 46, 50, 100};
+        quick            ? std::vector<std::size_t>{8}
+        : peer_case_only ? std::vector<std::size_t>{50}
+                         : std::vector<std::size_t>{22, 46, 50, 100};
     const std::vector<std::size_t> sides2 =
-        quick ? std::vector<std::size_t>{24} : std::vector<std::size_t>{100, 316, 1000};
+        quick            ? std::vector<std::size_t>{24}
+        : peer_case_only ? std::vector<std::size_t>{}
+                         : std::vector<std::size_t>{100, 316, 1000};
     for (std::size_t side : sides3)
         agree = run_case<3>(side, 2.0, quick, rows, stdout) && agree;
     for (std::size_t side : sides2)

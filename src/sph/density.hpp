@@ -4,6 +4,7 @@
 
 #include "sph/boundary_particles.hpp"
 #include "sph/neighbours/neighbour_list.hpp"
+#include "sph/neighbours/neighbour_sum.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"
 
@@ -27,11 +28,11 @@ void compute_density(const Params<D>& params, const Kernel& kernel, const Neighb
     const Real self = kernel_value_squared(kernel, Real(0));
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-        Real sum = self;
-        for (std::uint32_t j : neighbours.of(i))
-            sum += kernel_value_squared(kernel,
+        const Real sum = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
+            return kernel_value_squared(kernel,
                                         squared_length<D>(state.position[i] - state.position[j]));
-        state.density[i] = params.mass * sum;
+        });
+        state.density[i] = params.mass * (self + sum);
     }
 }
 
@@ -46,10 +47,10 @@ void add_boundary_density(const Params<D>& params, const Kernel& kernel,
     const auto volume = boundary.volumes();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-        Real sum = 0;
-        for (std::uint32_t b : boundary_neighbours.of(i))
-            sum += volume[b] *
+        const Real sum = sum_over_neighbours(boundary_neighbours, i, [&](std::uint32_t b) {
+            return volume[b] *
                    kernel_value_squared(kernel, squared_length<D>(state.position[i] - xb[b]));
+        });
         state.density[i] += params.rest_density * sum;
     }
 }

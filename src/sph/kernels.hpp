@@ -6,7 +6,15 @@
 // Interface shared by every kernel (tests/test_kernels.cpp checks it):
 //   W(r)        value at distance r
 //   dW(r)       radial derivative dW/dr (<= 0 inside the support)
+//   dW_over_r(r) dW/dr / r, for r > 0: the gradient is dW_over_r(r) x. Written
+//               without a division where the kernel allows (every kernel but
+//               spiky), since divisions bound the force loops' speed
 //   grad(x, r)  gradient of W at offset x with |x| = r > 0
+//   smooth_at_origin  whether dW_over_r is finite at r = 0, so the gradient
+//               dW_over_r(r) x is continuous there (and 0 at r = 0): no case
+//               for coincident particles is needed (every kernel but spiky)
+// Kernels store 1/h, and scale by it rather than dividing by h, for the same
+// reason.
 
 #include "sph/vec.hpp"
 
@@ -34,6 +42,7 @@ inline Real pow_int(Real x, int n) {
 // Both follow from integral of W over the disc / ball being 1.
 template <int D>
 struct Poly6 {
+    static constexpr bool smooth_at_origin = true;
     Real h, h2, norm;
     explicit Poly6(Real support)
         : h(support), h2(support * support),
@@ -42,8 +51,11 @@ struct Poly6 {
     // Value from the squared distance: no square root in the density loop.
     Real W_r2(Real r2) const { return r2 < h2 ? norm * detail::cube(h2 - r2) : 0; }
     Real W(Real r) const { return W_r2(r * r); }
-    Real dW(Real r) const { return r < h ? -6 * norm * r * (h2 - r * r) * (h2 - r * r) : 0; }
-    Vec<D> grad(const Vec<D>& x, Real r) const { return (dW(r) / r) * x; }
+    Real dW(Real r) const { return r * dW_over_r(r); }
+    Real dW_over_r(Real r) const {
+        return r < h ? -6 * norm * (h2 - r * r) * (h2 - r * r) : 0;
+    }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return dW_over_r(r) * x; }
 };
 
 // Müller et al. 2003, eq. 21: spiky = C (h - r)^3, whose gradient does not vanish
@@ -51,13 +63,15 @@ struct Poly6 {
 // 2D: C = 10 / (pi h^5); 3D: C = 15 / (pi h^6).
 template <int D>
 struct Spiky {
+    static constexpr bool smooth_at_origin = false;
     Real h, norm;
     explicit Spiky(Real support)
         : h(support), norm(D == 2 ? 10 / (detail::pi * detail::pow_int(support, 5))
                                   : 15 / (detail::pi * detail::pow_int(support, 6))) {}
     Real W(Real r) const { return r < h ? norm * detail::cube(h - r) : 0; }
     Real dW(Real r) const { return r < h ? -3 * norm * (h - r) * (h - r) : 0; }
-    Vec<D> grad(const Vec<D>& x, Real r) const { return (dW(r) / r) * x; }
+    Real dW_over_r(Real r) const { return dW(r) / r; }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return dW_over_r(r) * x; }
 };
 
 // Müller et al. 2003, eq. 22: the viscosity kernel is used only through its
@@ -81,12 +95,14 @@ struct ViscosityLaplacian {
 // 2D: C = 40 / (7 pi h^2); 3D: C = 8 / (pi h^3).
 template <int D>
 struct CubicSpline {
-    Real h, norm;
+    static constexpr bool smooth_at_origin = true;
+    Real h, inverse_h, norm;
     explicit CubicSpline(Real support)
-        : h(support), norm(D == 2 ? 40 / (7 * detail::pi * support * support)
-                                  : 8 / (detail::pi * detail::cube(support))) {}
+        : h(support), inverse_h(1 / support),
+          norm(D == 2 ? 40 / (7 * detail::pi * support * support)
+                      : 8 / (detail::pi * detail::cube(support))) {}
     Real W(Real r) const {
-        const Real q = r / h;
+        const Real q = r * inverse_h;
         if (q >= 1)
             return 0;
         if (q <= 0.5)
@@ -94,34 +110,48 @@ struct CubicSpline {
         return norm * 2 * detail::cube(1 - q);
     }
     Real dW(Real r) const {
-        const Real q = r / h;
+        const Real q = r * inverse_h;
         if (q >= 1)
             return 0;
         if (q <= 0.5)
-            return norm * 6 * (3 * q * q - 2 * q) / h;
-        return -norm * 6 * (1 - q) * (1 - q) / h;
+            return norm * 6 * (3 * q * q - 2 * q) * inverse_h;
+        return -norm * 6 * (1 - q) * (1 - q) * inverse_h;
     }
-    Vec<D> grad(const Vec<D>& x, Real r) const { return (dW(r) / r) * x; }
+    // q / r = 1 / h: the inner part is 6 (3 q - 2) / h^2, the outer part
+    // still needs 1 / r.
+    Real dW_over_r(Real r) const {
+        const Real q = r * inverse_h;
+        if (q >= 1)
+            return 0;
+        if (q <= 0.5)
+            return norm * 6 * (3 * q - 2) * inverse_h * inverse_h;
+        return dW(r) / r;
+    }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return dW_over_r(r) * x; }
 };
 
 // Wendland C2 (Wendland 1995; Dehnen & Aly 2012, table 1), support radius h:
 //   W = C (1 - q)^4 (1 + 4 q),   2D: C = 7 / (pi h^2);  3D: C = 21 / (2 pi h^3).
 template <int D>
 struct WendlandC2 {
-    Real h, norm;
+    static constexpr bool smooth_at_origin = true;
+    Real h, inverse_h, norm;
     explicit WendlandC2(Real support)
-        : h(support), norm(D == 2 ? 7 / (detail::pi * support * support)
-                                  : 21 / (2 * detail::pi * detail::cube(support))) {}
+        : h(support), inverse_h(1 / support),
+          norm(D == 2 ? 7 / (detail::pi * support * support)
+                      : 21 / (2 * detail::pi * detail::cube(support))) {}
     Real W(Real r) const {
-        const Real q = r / h;
+        const Real q = r * inverse_h;
         return q < 1 ? norm * detail::pow_int(1 - q, 4) * (1 + 4 * q) : 0;
     }
     // d/dr of (1-q)^4 (1+4q) = -20 q (1-q)^3 / h
-    Real dW(Real r) const {
-        const Real q = r / h;
-        return q < 1 ? -20 * norm * q * detail::cube(1 - q) / h : 0;
+    Real dW(Real r) const { return r * dW_over_r(r); }
+    // q / r = 1 / h: no division at all.
+    Real dW_over_r(Real r) const {
+        const Real q = r * inverse_h;
+        return q < 1 ? -20 * norm * inverse_h * inverse_h * detail::cube(1 - q) : 0;
     }
-    Vec<D> grad(const Vec<D>& x, Real r) const { return (dW(r) / r) * x; }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return dW_over_r(r) * x; }
 };
 
 // The seed's pair of kernels as one kernel: poly6 values for the density,
@@ -130,6 +160,7 @@ struct WendlandC2 {
 // best (poly6 needs no square root, spiky keeps repelling at r -> 0).
 template <int D>
 struct SeedKernel {
+    static constexpr bool smooth_at_origin = false;
     Poly6<D> value;
     Spiky<D> gradient;
     Real h;
@@ -137,6 +168,7 @@ struct SeedKernel {
     Real W_r2(Real r2) const { return value.W_r2(r2); }
     Real W(Real r) const { return value.W(r); }
     Real dW(Real r) const { return gradient.dW(r); }
+    Real dW_over_r(Real r) const { return gradient.dW_over_r(r); }
     Vec<D> grad(const Vec<D>& x, Real r) const { return gradient.grad(x, r); }
 };
 

@@ -54,6 +54,10 @@ Vec<D> pair_direction(const State<D>& state, std::size_t i, std::size_t j, const
 template <int D, class Kernel>
 Vec<D> pair_gradient(const Kernel& kernel, const State<D>& state, std::size_t i, std::size_t j,
                      const Vec<D>& x_ij, Real r) {
+    if constexpr (Kernel::smooth_at_origin)
+        return kernel.dW_over_r(r) * x_ij; // a product: the force loops vectorise
+    if (r > 1e-12 * kernel.h)
+        return kernel.dW_over_r(r) * x_ij;
     return kernel.dW(r) * pair_direction(state, i, j, x_ij, r, kernel.h);
 }
 
@@ -63,7 +67,9 @@ Vec<D> pair_gradient(const Kernel& kernel, const State<D>& state, std::size_t i,
 // wall keeps it in).
 template <int D, class Kernel>
 Vec<D> boundary_gradient(const Kernel& kernel, const Vec<D>& x_ib, Real r) {
-    return r > 1e-12 * kernel.h ? (kernel.dW(r) / r) * x_ib : Vec<D>(0);
+    if constexpr (Kernel::smooth_at_origin)
+        return kernel.dW_over_r(r) * x_ib;
+    return r > 1e-12 * kernel.h ? kernel.dW_over_r(r) * x_ib : Vec<D>(0);
 }
 
 } // namespace sph

@@ -10,7 +10,9 @@
 
 #include "sph/effects/effect.hpp"
 #include "sph/kernels.hpp"
+#include "sph/neighbours/neighbour_sum.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace sph {
@@ -36,19 +38,20 @@ class ArtificialViscosity final : public Effect<D> {
         const Real nu_scale = 2 * alpha_ * params.h * params.sound_speed();
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
-            Vec<D> a(0);
-            for (std::uint32_t j : in.neighbours.of(i)) {
+            Vec<D> a = -sum_over_neighbours(in.neighbours, i, [&](std::uint32_t j) {
                 const Vec<D> x_ij = state.position[i] - state.position[j];
-                const Real v_dot_x = glm::dot(state.velocity[i] - state.velocity[j], x_ij);
-                if (v_dot_x >= 0)
-                    continue;
                 const Real r2 = squared_length<D>(x_ij);
                 const Real r = std::sqrt(r2);
-                const Real Pi =
-                    -nu_scale / (state.density[i] + state.density[j]) * v_dot_x / (r2 + eps);
-                // grad W = (dW/dr / r) x_ij; at r = 0 v_dot_x is 0 and we never get here.
-                a -= (params.mass * Pi * kernel.dW(r) / r) * x_ij;
-            }
+                // Receding pairs (v . x >= 0) add nothing: a select, not a
+                // branch, and one division (the rest of Pi grad W is
+                // products). At r = 0, v . x is 0 too.
+                const Real v_dot_x =
+                    std::min(glm::dot(state.velocity[i] - state.velocity[j], x_ij), Real(0));
+                const Real Pi = -nu_scale * v_dot_x /
+                                ((state.density[i] + state.density[j]) * (r2 + eps));
+                const Real dW_over_r = r > 0 ? kernel.dW_over_r(r) : 0;
+                return (params.mass * Pi * dW_over_r) * x_ij;
+            });
             // The walls too (as Akinci et al. 2012 do): a wall particle is
             // fluid with the particle's density, mass rho0 V_b and its own
             // velocity (0 but on a paddle, sph/paddles.hpp).
@@ -58,17 +61,16 @@ class ArtificialViscosity final : public Effect<D> {
             if (in.boundary) {
                 const auto xb = in.boundary->positions();
                 const auto volume = in.boundary->volumes();
-                for (std::uint32_t b : in.boundary_neighbours.of(i)) {
+                a -= sum_over_neighbours(in.boundary_neighbours, i, [&](std::uint32_t b) {
                     const Vec<D> x_ib = state.position[i] - xb[b];
-                    const Real v_dot_x =
-                        glm::dot(state.velocity[i] - in.boundary->velocity(b), x_ib);
-                    if (v_dot_x >= 0)
-                        continue;
                     const Real r2 = squared_length<D>(x_ib);
                     const Real r = std::sqrt(r2);
-                    const Real Pi = -nu_scale / (2 * state.density[i]) * v_dot_x / (r2 + eps);
-                    a -= (params.rest_density * volume[b] * Pi * kernel.dW(r) / r) * x_ib;
-                }
+                    const Real v_dot_x = std::min(
+                        glm::dot(state.velocity[i] - in.boundary->velocity(b), x_ib), Real(0));
+                    const Real Pi = -nu_scale * v_dot_x / (2 * state.density[i] * (r2 + eps));
+                    const Real dW_over_r = r > 0 ? kernel.dW_over_r(r) : 0;
+                    return (params.rest_density * volume[b] * Pi * dW_over_r) * x_ib;
+                });
             }
             state.acceleration[i] += a;
         }

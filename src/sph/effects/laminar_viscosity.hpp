@@ -15,6 +15,7 @@
 
 #include "sph/effects/effect.hpp"
 #include "sph/kernels.hpp"
+#include "sph/neighbours/neighbour_sum.hpp"
 
 #include <cmath>
 
@@ -41,26 +42,26 @@ class LaminarViscosity final : public Effect<D> {
         const Real two_mu = 2 * mu_;
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
-            Vec<D> a(0);
-            for (std::uint32_t j : in.neighbours.of(i)) {
+            Vec<D> a = sum_over_neighbours(in.neighbours, i, [&](std::uint32_t j) {
                 const Vec<D> x_ij = state.position[i] - state.position[j];
                 const Real r2 = squared_length<D>(x_ij);
                 const Real r = std::sqrt(r2);
                 // x . grad W = r dW/dr: no direction needed, fine at r = 0.
+                // One division per pair, not two (divisions bound this loop).
                 const Real x_dot_grad = r * kernel.dW(r);
-                a += (params.mass / state.density[j] * x_dot_grad / (r2 + eps)) *
-                     (state.velocity[i] - state.velocity[j]);
-            }
+                return (params.mass * x_dot_grad / (state.density[j] * (r2 + eps))) *
+                       (state.velocity[i] - state.velocity[j]);
+            });
             if (in.boundary) {
                 const auto xb = in.boundary->positions();
                 const auto volume = in.boundary->volumes();
-                for (std::uint32_t b : in.boundary_neighbours.of(i)) {
+                a += sum_over_neighbours(in.boundary_neighbours, i, [&](std::uint32_t b) {
                     const Vec<D> x_ib = state.position[i] - xb[b];
                     const Real r2 = squared_length<D>(x_ib);
                     const Real r = std::sqrt(r2);
-                    a += (volume[b] * r * kernel.dW(r) / (r2 + eps)) *
-                         (state.velocity[i] - in.boundary->velocity(b));
-                }
+                    return (volume[b] * r * kernel.dW(r) / (r2 + eps)) *
+                           (state.velocity[i] - in.boundary->velocity(b));
+                });
             }
             state.acceleration[i] += (two_mu / state.density[i]) * a;
         }

@@ -3,6 +3,7 @@
 #include "sph/boundary.hpp"
 #include "sph/headroom.hpp"
 #include "sph/integrate.hpp"
+#include "sph/neighbours/neighbour_sum.hpp"
 #include "sph/obstacles.hpp"
 #include "sph/paddles.hpp"
 #include "sph/pair_direction.hpp"
@@ -55,38 +56,41 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
-        Vec<D> sum(0), walls_sum(0);
-        Real sum_squares = 0;
-        const std::uint32_t first = context.neighbours.start[i];
-        for (std::uint32_t e = first; e < context.neighbours.start[i + 1]; ++e) {
-            const std::uint32_t j = context.neighbours.index[e];
+        // The pairs' gradients, kept for the solves' iterations, then their
+        // sums (separate passes: each loop vectorises).
+        const NeighbourList& pairs = context.neighbours;
+#pragma omp simd
+        for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e) {
+            const std::uint32_t j = pairs.index[e];
             const Vec<D> x_ij = state.position[i] - state.position[j];
             const Real r = std::sqrt(squared_length<D>(x_ij));
-            const Vec<D> g = params.mass * pair_gradient(kernel, state, i, j, x_ij, r);
-            gradient_[e] = g;
-            sum += g;
-            sum_squares += squared_length<D>(g);
+            gradient_[e] = params.mass * pair_gradient(kernel, state, i, j, x_ij, r);
         }
+        const Vec<D> sum =
+            sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t) { return gradient_[e]; });
+        const Real sum_squares = sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t) {
+            return squared_length<D>(gradient_[e]);
+        });
+        Vec<D> walls_sum(0);
         if (context.boundary) {
             const auto xb = context.boundary->positions();
             const auto volume = context.boundary->volumes();
             const NeighbourList& walls = context.boundary_neighbours;
+#pragma omp simd
             for (std::uint32_t e = walls.start[i]; e < walls.start[i + 1]; ++e) {
                 const std::uint32_t b = walls.index[e];
                 const Vec<D> x_ib = state.position[i] - xb[b];
                 const Real r = std::sqrt(squared_length<D>(x_ib));
-                const Vec<D> w =
+                wall_gradient_[e] =
                     params.rest_density * volume[b] * boundary_gradient(kernel, x_ib, r);
-                wall_gradient_[e] = w;
-                walls_sum += w;
             }
-            if (moving) {
-                Real motion = 0;
-                for (std::uint32_t e = walls.start[i]; e < walls.start[i + 1]; ++e)
-                    motion +=
-                        glm::dot(wall_gradient_[e], context.boundary->velocity(walls.index[e]));
-                wall_motion_[i] = motion;
-            }
+            walls_sum = sum_over_pairs(walls, i, [&](std::uint32_t e, std::uint32_t) {
+                return wall_gradient_[e];
+            });
+            if (moving)
+                wall_motion_[i] = sum_over_pairs(walls, i, [&](std::uint32_t e, std::uint32_t b) {
+                    return glm::dot(wall_gradient_[e], context.boundary->velocity(b));
+                });
         }
         // The walls push with twice the particle's stiffness (pressure
         // mirroring, see correct_velocities), so S_i = (G_f + G_w) . (G_f + 2 G_w) + sum |g|^2.
@@ -143,12 +147,13 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
         // (density solve) or the rate itself (divergence solve).
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
-            Real rate = 0;
-            for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
-                rate += glm::dot(gradient_[e], state.velocity[i] - state.velocity[pairs.index[e]]);
+            Real rate = sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t j) {
+                return glm::dot(gradient_[e], state.velocity[i] - state.velocity[j]);
+            });
             if (walls)
-                for (std::uint32_t e = walls->start[i]; e < walls->start[i + 1]; ++e)
-                    rate += glm::dot(wall_gradient_[e], state.velocity[i]);
+                rate += sum_over_pairs(*walls, i, [&](std::uint32_t e, std::uint32_t) {
+                    return glm::dot(wall_gradient_[e], state.velocity[i]);
+                });
             if (!wall_motion_.empty())
                 rate -= wall_motion_[i];
             source_[i] = target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
@@ -213,13 +218,14 @@ void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>&
     const NeighbourList* walls = context.boundary ? &context.boundary_neighbours : nullptr;
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
-        Vec<D> dv(0);
         const Real s_i = stiffness_[i];
-        for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
-            dv -= (s_i + stiffness_[pairs.index[e]]) * gradient_[e];
+        Vec<D> dv = -sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t j) {
+            return (s_i + stiffness_[j]) * gradient_[e];
+        });
         if (walls)
-            for (std::uint32_t e = walls->start[i]; e < walls->start[i + 1]; ++e)
-                dv -= (s_i + s_i) * wall_gradient_[e];
+            dv -= (s_i + s_i) * sum_over_pairs(*walls, i, [&](std::uint32_t e, std::uint32_t) {
+                      return wall_gradient_[e];
+                  });
         state.velocity[i] += dv;
     }
 }

@@ -28,7 +28,7 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2) grad W, walls included.
         auto timed = context.time("pressure");
         compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
-                                      context.boundary_neighbours, state);
+                                      context.boundary_neighbours, pressure_term_, state);
     });
     // 3. The effects the scene names: viscosity (Morris), Monaghan's
     // artificial viscosity, gravity, ...

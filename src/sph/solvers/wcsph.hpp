@@ -8,6 +8,8 @@
 #include "sph/equation_of_state.hpp"
 #include "sph/solvers/explicit_solver.hpp"
 
+#include <vector>
+
 namespace sph {
 
 template <int D>
@@ -31,6 +33,7 @@ class WcsphSolver final : public ExplicitSolver<D> {
 
   private:
     KernelKind kernel_;
+    std::vector<Real> pressure_term_; // p / rho^2 per particle, scratch
 };
 
 } // namespace sph

@@ -35,6 +35,13 @@ template <int D>
 template <bool Moving, class Visit>
 void BoundaryParticles<D>::for_each_in(const Grid& grid, const Vec<D>& x, Visit&& visit) const {
     const Cell centre = cell_of(grid, x);
+    if (!grid.near_any.empty()) {
+        bool inside = true;
+        for (int a = 0; a < D; ++a)
+            inside = inside && centre[a] >= 0 && centre[a] < grid.cells[a];
+        if (inside && !grid.near_any[cell_index(grid, centre)])
+            return;
+    }
     Cell lo, hi;
     for (int a = 0; a < D; ++a) {
         lo[a] = std::max<std::int64_t>(centre[a] - 1, 0);
@@ -88,6 +95,39 @@ std::size_t BoundaryParticles<D>::fit_grid(Grid& grid, std::span<const Vec<D>> p
 }
 
 template <int D>
+void BoundaryParticles<D>::mark_near_cells(Grid& grid) {
+    grid.near_any.assign(grid.cell_start.size() - 1, 0);
+    auto mark_around = [&](const Cell& c) {
+        Cell lo, hi;
+        for (int a = 0; a < D; ++a) {
+            lo[a] = std::max<std::int64_t>(c[a] - 1, 0);
+            hi[a] = std::min<std::int64_t>(c[a] + 1, grid.cells[a] - 1);
+        }
+        if constexpr (D == 2) {
+            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+                    grid.near_any[cell_index(grid, Cell(i, j))] = 1;
+        } else {
+            for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+                for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                    for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+                        grid.near_any[cell_index(grid, Cell(i, j, k))] = 1;
+        }
+    };
+    Cell c(0);
+    for (std::size_t k = 0; k + 1 < grid.cell_start.size(); ++k) {
+        if (grid.cell_start[k + 1] > grid.cell_start[k])
+            mark_around(c);
+        // The next cell, x fastest (cell_index's order).
+        for (int a = 0; a < D; ++a) {
+            if (++c[a] < grid.cells[a])
+                break;
+            c[a] = 0;
+        }
+    }
+}
+
+template <int D>
 std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> positions) {
     const std::size_t n = positions.size();
     if (n == 0) {
@@ -113,6 +153,7 @@ std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> 
         destination[b] = next[cell[b]]++;
         positions_[destination[b]] = positions[b];
     }
+    mark_near_cells(grid_);
     return destination;
 }
 
@@ -126,7 +167,7 @@ void BoundaryParticles<D>::add_moving(std::vector<Vec<D>> rest, std::vector<Real
     volumes_.insert(volumes_.end(), volumes.begin(), volumes.end());
     rest_ = std::move(rest);
     group_ = std::move(group);
-    moving_velocities_.assign(rest_.size(), Vec<D>(0));
+    velocities_.resize(positions_.size(), Vec<D>(0));
     refresh_moving_grid();
 }
 
@@ -162,6 +203,7 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, R
     build_grid(std::move(positions));
     volumes_.assign(positions_.size(), volume);
     moving_begin_ = positions_.size();
+    velocities_.assign(positions_.size(), Vec<D>(0));
 }
 
 template <int D>
@@ -174,6 +216,7 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vect
     for (std::size_t b = 0; b < volumes.size(); ++b)
         volumes_[destination[b]] = volumes[b];
     moving_begin_ = positions_.size();
+    velocities_.assign(positions_.size(), Vec<D>(0));
 }
 
 template <int D>
@@ -182,6 +225,7 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, K
     build_grid(std::move(positions));
     const std::size_t n = positions_.size();
     moving_begin_ = n;
+    velocities_.assign(n, Vec<D>(0));
     // V_b = 1 / sum_k W_bk, the particle itself included (Akinci et al. 2012, eq. 4).
     volumes_.resize(n);
     with_kernel<D>(kernel, h, [&](const auto& W) {

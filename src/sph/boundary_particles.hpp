@@ -67,12 +67,15 @@ class BoundaryParticles {
     std::span<Vec<D>> moving_positions() {
         return std::span<Vec<D>>(positions_).subspan(moving_begin_);
     }
-    std::span<Vec<D>> moving_velocities() { return moving_velocities_; }
+    std::span<Vec<D>> moving_velocities() {
+        return std::span<Vec<D>>(velocities_).subspan(moving_begin_);
+    }
     void refresh_moving_grid();
     // Velocity of particle b (m/s): exactly 0 for a static one.
-    Vec<D> velocity(std::uint32_t b) const {
-        return b < moving_begin_ ? Vec<D>(0) : moving_velocities_[b - moving_begin_];
-    }
+    // (Stored for the static ones too: a plain load keeps the loops that
+    // read it vectorised.)
+    Vec<D> velocity(std::uint32_t b) const { return velocities_[b]; }
+    std::span<const Vec<D>> velocities() const { return velocities_; }
 
   private:
     using Cell = glm::vec<D, std::int64_t, glm::defaultp>;
@@ -82,9 +85,15 @@ class BoundaryParticles {
         Vec<D> origin{0};
         Cell cells{0};
         std::vector<std::uint32_t> cell_start;
+        // Per cell, whether it or a cell beside it holds a particle (the
+        // static grid only): most fluid particles are far from every wall,
+        // and one look here spares them 3^D empty cells.
+        std::vector<std::uint8_t> near_any;
     };
     // Sorts the particles into the static grid; where each of `positions` went.
     std::vector<std::uint32_t> build_grid(std::vector<Vec<D>> positions);
+    // Fills grid.near_any from its cells' particles.
+    static void mark_near_cells(Grid& grid);
     // Lays `grid` over the bounding box of `points` (not empty); the cell count.
     std::size_t fit_grid(Grid& grid, std::span<const Vec<D>> points) const;
     Cell cell_of(const Grid& grid, const Vec<D>& x) const;
@@ -100,12 +109,12 @@ class BoundaryParticles {
     std::vector<Real> volumes_;     // m^3 (m^2 in 2D)
     Real h_ = 0;
     Grid grid_; // the static particles, built once
-    // Moving particles: where they are at rest, their group, velocities
-    // (m/s), and their own grid, its entries indices into positions_.
+    std::vector<Vec<D>> velocities_; // m/s, 0 for the static ones
+    // Moving particles: where they are at rest, their group, and their own
+    // grid, its entries indices into positions_.
     std::size_t moving_begin_ = 0;
     std::vector<Vec<D>> rest_;
     std::vector<std::uint32_t> group_;
-    std::vector<Vec<D>> moving_velocities_;
     Grid moving_grid_;
     std::vector<std::uint32_t> moving_order_;
     std::vector<std::size_t> moving_cell_;   // scratch of refresh_moving_grid()

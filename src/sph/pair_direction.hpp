@@ -50,6 +50,17 @@ Vec<D> pair_direction(const State<D>& state, std::size_t i, std::size_t j, const
     return a > b ? -d : d;
 }
 
+// dW/dr / r, taken as 0 at r = 0 for a kernel whose value there is infinite
+// (spiky); a smooth kernel's is computed without a condition, which keeps
+// the loops that call it vectorised.
+template <class Kernel>
+Real gradient_factor(const Kernel& kernel, Real r) {
+    if constexpr (Kernel::smooth_at_origin)
+        return kernel.dW_over_r(r);
+    else
+        return r > 0 ? kernel.dW_over_r(r) : 0;
+}
+
 // grad_i W(x_i - x_j) for a fluid pair, defined at r = 0 as well.
 template <int D, class Kernel>
 Vec<D> pair_gradient(const Kernel& kernel, const State<D>& state, std::size_t i, std::size_t j,

@@ -13,7 +13,7 @@
 // Then the "DualSPHysics-comparable" case: the 2D wcsph dam break with the
 // Wendland C2 kernel, support 2.82 dp (20 neighbours on the lattice, 21 with
 // the particle itself), the Verlet integrator, artificial viscosity only,
-// ~21,000 fluid particles, with both neighbour searches and reorderings; its rate is compared
+// ~21,000 fluid particles, with each search (--search) and reordering; its rate is compared
 // with DualSPHysics 5.0's ~0.6 M particle-steps/s (2 threads, same machine).
 //
 // With --shuffled, every case runs again from particle arrays in a random
@@ -362,7 +362,7 @@ int main(int argc, char** argv) {
                     for (std::size_t n : sizes)
                         cases.push_back({solver, d, n, search, false, steps_for(n), reorder});
     if (dsph)
-        for (const char* s : {"hash", "sorted_grid"})
+        for (const auto& s : searches)
             for (int reorder : reorders)
                 cases.push_back(
                     {"wcsph", 2, quick ? 300u : 21000u, s, true, steps > 0 ? steps : 200, reorder});

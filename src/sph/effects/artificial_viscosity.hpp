@@ -11,8 +11,8 @@
 #include "sph/effects/effect.hpp"
 #include "sph/kernels.hpp"
 #include "sph/neighbours/neighbour_sum.hpp"
+#include "sph/pair_direction.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 namespace sph {
@@ -45,12 +45,12 @@ class ArtificialViscosity final : public Effect<D> {
                 // Receding pairs (v . x >= 0) add nothing: a select, not a
                 // branch, and one division (the rest of Pi grad W is
                 // products). At r = 0, v . x is 0 too.
-                const Real v_dot_x =
-                    std::min(glm::dot(state.velocity[i] - state.velocity[j], x_ij), Real(0));
+                const Real rate = glm::dot(state.velocity[i] - state.velocity[j], x_ij);
+                const Real v_dot_x = rate < 0 ? rate : 0; // not std::min: its reference
+                                                          // keeps the loop scalar
                 const Real Pi = -nu_scale * v_dot_x /
                                 ((state.density[i] + state.density[j]) * (r2 + eps));
-                const Real dW_over_r = r > 0 ? kernel.dW_over_r(r) : 0;
-                return (params.mass * Pi * dW_over_r) * x_ij;
+                return (params.mass * Pi * gradient_factor(kernel, r)) * x_ij;
             });
             // The walls too (as Akinci et al. 2012 do): a wall particle is
             // fluid with the particle's density, mass rho0 V_b and its own
@@ -61,15 +61,17 @@ class ArtificialViscosity final : public Effect<D> {
             if (in.boundary) {
                 const auto xb = in.boundary->positions();
                 const auto volume = in.boundary->volumes();
+                // A local span, not in.boundary->velocity(b): the loop then vectorises.
+                const auto wall_velocity = in.boundary->velocities();
                 a -= sum_over_neighbours(in.boundary_neighbours, i, [&](std::uint32_t b) {
                     const Vec<D> x_ib = state.position[i] - xb[b];
                     const Real r2 = squared_length<D>(x_ib);
                     const Real r = std::sqrt(r2);
-                    const Real v_dot_x = std::min(
-                        glm::dot(state.velocity[i] - in.boundary->velocity(b), x_ib), Real(0));
+                    const Real rate = glm::dot(state.velocity[i] - wall_velocity[b], x_ib);
+                    const Real v_dot_x = rate < 0 ? rate : 0;
                     const Real Pi = -nu_scale * v_dot_x / (2 * state.density[i] * (r2 + eps));
-                    const Real dW_over_r = r > 0 ? kernel.dW_over_r(r) : 0;
-                    return (params.rest_density * volume[b] * Pi * dW_over_r) * x_ib;
+                    return (params.rest_density * volume[b] * Pi * gradient_factor(kernel, r)) *
+                           x_ib;
                 });
             }
             state.acceleration[i] += a;

@@ -55,12 +55,14 @@ class LaminarViscosity final : public Effect<D> {
             if (in.boundary) {
                 const auto xb = in.boundary->positions();
                 const auto volume = in.boundary->volumes();
+                // A local span, not in.boundary->velocity(b): the loop then vectorises.
+                const auto wall_velocity = in.boundary->velocities();
                 a += sum_over_neighbours(in.boundary_neighbours, i, [&](std::uint32_t b) {
                     const Vec<D> x_ib = state.position[i] - xb[b];
                     const Real r2 = squared_length<D>(x_ib);
                     const Real r = std::sqrt(r2);
                     return (volume[b] * r * kernel.dW(r) / (r2 + eps)) *
-                           (state.velocity[i] - in.boundary->velocity(b));
+                           (state.velocity[i] - wall_velocity[b]);
                 });
             }
             state.acceleration[i] += (two_mu / state.density[i]) * a;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <span>
 
 // Notation. With g_ij = m grad W_ij (fluid pairs) and w_ib = rho0 V_b grad W_ib
 // (wall pairs), the rate of compression is
@@ -54,6 +55,9 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
     // No particle is compressed below a fraction of this: with S_i under it
     // (an isolated particle) there is nothing to push against.
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
+    // Local spans, not the members: loops that read members through `this`
+    // stay scalar.
+    const std::span<Vec<D>> gradient = gradient_, wall_gradient = wall_gradient_;
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         // The pairs' gradients, kept for the solves' iterations, then their
@@ -64,32 +68,33 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
             const std::uint32_t j = pairs.index[e];
             const Vec<D> x_ij = state.position[i] - state.position[j];
             const Real r = std::sqrt(squared_length<D>(x_ij));
-            gradient_[e] = params.mass * pair_gradient(kernel, state, i, j, x_ij, r);
+            gradient[e] = params.mass * pair_gradient(kernel, state, i, j, x_ij, r);
         }
         const Vec<D> sum =
-            sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t) { return gradient_[e]; });
+            sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t) { return gradient[e]; });
         const Real sum_squares = sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t) {
-            return squared_length<D>(gradient_[e]);
+            return squared_length<D>(gradient[e]);
         });
         Vec<D> walls_sum(0);
         if (context.boundary) {
             const auto xb = context.boundary->positions();
             const auto volume = context.boundary->volumes();
+            const auto wall_velocity = context.boundary->velocities();
             const NeighbourList& walls = context.boundary_neighbours;
 #pragma omp simd
             for (std::uint32_t e = walls.start[i]; e < walls.start[i + 1]; ++e) {
                 const std::uint32_t b = walls.index[e];
                 const Vec<D> x_ib = state.position[i] - xb[b];
                 const Real r = std::sqrt(squared_length<D>(x_ib));
-                wall_gradient_[e] =
+                wall_gradient[e] =
                     params.rest_density * volume[b] * boundary_gradient(kernel, x_ib, r);
             }
             walls_sum = sum_over_pairs(walls, i, [&](std::uint32_t e, std::uint32_t) {
-                return wall_gradient_[e];
+                return wall_gradient[e];
             });
             if (moving)
                 wall_motion_[i] = sum_over_pairs(walls, i, [&](std::uint32_t e, std::uint32_t b) {
-                    return glm::dot(wall_gradient_[e], context.boundary->velocity(b));
+                    return glm::dot(wall_gradient[e], wall_velocity[b]);
                 });
         }
         // The walls push with twice the particle's stiffness (pressure
@@ -142,17 +147,18 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
     int restarts = 0;
     int iterations = 0;
     for (;;) {
+        const std::span<const Vec<D>> gradient = gradient_, wall_gradient = wall_gradient_;
         // The compression rate with the current velocities, and the source
         // each particle's stiffness answers: the predicted density error
         // (density solve) or the rate itself (divergence solve).
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
             Real rate = sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t j) {
-                return glm::dot(gradient_[e], state.velocity[i] - state.velocity[j]);
+                return glm::dot(gradient[e], state.velocity[i] - state.velocity[j]);
             });
             if (walls)
                 rate += sum_over_pairs(*walls, i, [&](std::uint32_t e, std::uint32_t) {
-                    return glm::dot(wall_gradient_[e], state.velocity[i]);
+                    return glm::dot(wall_gradient[e], state.velocity[i]);
                 });
             if (!wall_motion_.empty())
                 rate -= wall_motion_[i];
@@ -216,16 +222,18 @@ void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>&
     const std::size_t n = state.size();
     const NeighbourList& pairs = context.neighbours;
     const NeighbourList* walls = context.boundary ? &context.boundary_neighbours : nullptr;
+    const std::span<const Vec<D>> gradient = gradient_, wall_gradient = wall_gradient_;
+    const std::span<const Real> stiffness = stiffness_;
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
-        const Real s_i = stiffness_[i];
+        const Real s_i = stiffness[i];
         Vec<D> dv = -sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t j) {
-            return (s_i + stiffness_[j]) * gradient_[e];
+            return (s_i + stiffness[j]) * gradient[e];
         });
         if (walls)
-            dv -= (s_i + s_i) * sum_over_pairs(*walls, i, [&](std::uint32_t e, std::uint32_t) {
-                      return wall_gradient_[e];
-                  });
+            dv -= sum_over_pairs(*walls, i, [&](std::uint32_t e, std::uint32_t) {
+                return (s_i + s_i) * wall_gradient[e];
+            });
         state.velocity[i] += dv;
     }
 }

@@ -285,7 +285,7 @@ void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>> query,
     out.start[0] = 0;
     if (positions_.empty()) {
         std::fill(out.start.begin(), out.start.end(), 0);
-        out.index.clear();
+        out.size_for(0);
         return;
     }
 #pragma omp parallel for schedule(dynamic, 256)
@@ -296,7 +296,7 @@ void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>> query,
     }
     for (std::size_t i = 0; i < n; ++i)
         out.start[i + 1] += out.start[i];
-    resize_with_headroom(out.index, out.start[n]);
+    out.size_for(out.start[n]);
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         std::uint32_t* row = out.index.data() + out.start[i];

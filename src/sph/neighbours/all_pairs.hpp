@@ -22,6 +22,7 @@ class AllPairs final : public NeighbourSearch<D> {
             }
             out.start.push_back(static_cast<std::uint32_t>(out.index.size()));
         }
+        out.size_for(out.index.size());
     }
 };
 

@@ -18,46 +18,39 @@
 
 namespace sph {
 
-// Doubles in one vector register of the target: the loops' width.
-#if defined(__AVX512F__)
-inline constexpr std::uint32_t simd_lanes = 8;
-#elif defined(__AVX__)
-inline constexpr std::uint32_t simd_lanes = 4;
-#else
-inline constexpr std::uint32_t simd_lanes = 2;
-#endif
-
-// sum over e in row i of term(e, index[e]); e is the pair's place in the list,
-// for arrays kept per pair.
+// sum over e in row i of term(e, index[e]); e (a std::size_t) is the pair's
+// place in the list, for arrays kept per pair.
 template <class Term>
 auto sum_over_pairs(const NeighbourList& list, std::size_t i, Term&& term_argument) {
     // A local copy: loads of what the term captures, through the caller's
     // closure, are then seen not to change in the loop (otherwise GCC 12
     // gives up on it: "no vectype for stmt").
     const std::decay_t<Term> term = term_argument;
-    using T = std::decay_t<decltype(term(std::uint32_t(0), std::uint32_t(0)))>;
-    const std::uint32_t begin = list.start[i], end = list.start[i + 1];
+    using T = std::decay_t<decltype(term(std::size_t(0), std::uint32_t(0)))>;
+    // 64-bit positions: a 32-bit one could wrap, so GCC would not see
+    // consecutive e as consecutive addresses and would gather index[e].
+    const std::size_t begin = list.start[i], end = list.start[i + 1];
     const std::uint32_t* index = list.index.data();
     // The loop runs a whole number of vectors: the lanes past the row's end
-    // repeat its last pair and add 0. A row of 20 would otherwise end in a
-    // scalar remainder of 4 that costs as much as the 16 before it.
-    const std::uint32_t padded_end =
+    // read the next rows or the list's padding (neighbour_list.hpp), and add
+    // 0. A row of 20 would otherwise end in a scalar remainder of 4 that
+    // costs as much as the 16 before it. Arrays kept per pair need the same
+    // padding.
+    const std::size_t padded_end =
         begin + (end - begin + simd_lanes - 1) / simd_lanes * simd_lanes;
     if constexpr (std::is_same_v<T, Real>) {
         Real s = 0;
 #pragma omp simd reduction(+ : s)
-        for (std::uint32_t e = begin; e < padded_end; ++e) {
-            const std::uint32_t p = e < end ? e : end - 1;
-            const Real t = term(p, index[p]);
+        for (std::size_t e = begin; e < padded_end; ++e) {
+            const Real t = term(e, index[e]);
             s += e < end ? t : 0;
         }
         return s;
     } else if constexpr (T::length() == 2) {
         Real x = 0, y = 0;
 #pragma omp simd reduction(+ : x, y)
-        for (std::uint32_t e = begin; e < padded_end; ++e) {
-            const std::uint32_t p = e < end ? e : end - 1;
-            const T t = term(p, index[p]);
+        for (std::size_t e = begin; e < padded_end; ++e) {
+            const T t = term(e, index[e]);
             x += e < end ? t.x : 0;
             y += e < end ? t.y : 0;
         }
@@ -66,9 +59,8 @@ auto sum_over_pairs(const NeighbourList& list, std::size_t i, Term&& term_argume
         static_assert(T::length() == 3, "a term is a Real, a Vec<2> or a Vec<3>");
         Real x = 0, y = 0, z = 0;
 #pragma omp simd reduction(+ : x, y, z)
-        for (std::uint32_t e = begin; e < padded_end; ++e) {
-            const std::uint32_t p = e < end ? e : end - 1;
-            const T t = term(p, index[p]);
+        for (std::size_t e = begin; e < padded_end; ++e) {
+            const T t = term(e, index[e]);
             x += e < end ? t.x : 0;
             y += e < end ? t.y : 0;
             z += e < end ? t.z : 0;
@@ -80,7 +72,7 @@ auto sum_over_pairs(const NeighbourList& list, std::size_t i, Term&& term_argume
 // sum over the neighbours j of particle i of term(j).
 template <class Term>
 auto sum_over_neighbours(const NeighbourList& list, std::size_t i, const Term& term) {
-    return sum_over_pairs(list, i, [term](std::uint32_t, std::uint32_t j) { return term(j); });
+    return sum_over_pairs(list, i, [term](std::size_t, std::uint32_t j) { return term(j); });
 }
 
 } // namespace sph

@@ -454,10 +454,7 @@ void SortedGrid<D>::list_neighbours(Real radius, NeighbourList& out) {
     }
     if (total > std::numeric_limits<std::uint32_t>::max())
         throw std::overflow_error("sorted_grid: more than 2^32 neighbour pairs");
-    // Headroom so that the pair count growing a little does not reallocate.
-    if (out.index.capacity() < total)
-        out.index.reserve(total + total / 4);
-    out.index.resize(total);
+    out.size_for(total);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
         std::copy_n(scratch_[row_thread_[i]].rows.data() + row_offset_[i],
@@ -473,7 +470,7 @@ void SortedGrid<D>::find(std::span<const Vec<D>> positions, Real radius, Neighbo
     if (n == 0 || !(radius > 0)) {
         // Nobody is strictly closer than a radius of zero.
         out.start.assign(n + 1, 0);
-        out.index.clear();
+        out.size_for(0);
         order_.resize(n);
         std::iota(order_.begin(), order_.end(), 0u);
         cell_start_.assign(1, 0);

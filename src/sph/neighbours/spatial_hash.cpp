@@ -79,10 +79,7 @@ void SpatialHash<D>::find(std::span<const Vec<D>> positions, Real radius, Neighb
     }
     for (std::size_t i = 0; i < n; ++i)
         out.start[i + 1] += out.start[i];
-    // Headroom so that the pair count growing a little does not reallocate.
-    if (out.index.capacity() < out.start[n])
-        out.index.reserve(out.start[n] + out.start[n] / 4);
-    out.index.resize(out.start[n]);
+    out.size_for(out.start[n]);
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         std::uint32_t* row = out.index.data() + out.start[i];

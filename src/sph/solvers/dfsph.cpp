@@ -46,9 +46,11 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
     stiffness_.resize(n);
     stiffness_sum_.resize(n);
     source_.resize(n);
-    resize_with_headroom(gradient_, context.neighbours.pair_count());
+    // With the lists' padding: the loops over a row read whole vectors.
+    resize_with_headroom(gradient_, context.neighbours.pair_count() + simd_lanes);
     resize_with_headroom(wall_gradient_,
-                         context.boundary ? context.boundary_neighbours.pair_count() : 0);
+                         (context.boundary ? context.boundary_neighbours.pair_count() : 0) +
+                             simd_lanes);
     // Moving walls: sum_b w_ib . v_b, fixed for the step (v_b is).
     const bool moving = context.boundary && context.boundary->has_moving();
     wall_motion_.resize(moving ? n : 0);
@@ -64,15 +66,15 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
         // sums (separate passes: each loop vectorises).
         const NeighbourList& pairs = context.neighbours;
 #pragma omp simd
-        for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e) {
+        for (std::size_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e) {
             const std::uint32_t j = pairs.index[e];
             const Vec<D> x_ij = state.position[i] - state.position[j];
             const Real r = std::sqrt(squared_length<D>(x_ij));
             gradient[e] = params.mass * pair_gradient(kernel, state, i, j, x_ij, r);
         }
         const Vec<D> sum =
-            sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t) { return gradient[e]; });
-        const Real sum_squares = sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t) {
+            sum_over_pairs(pairs, i, [&](std::size_t e, std::uint32_t) { return gradient[e]; });
+        const Real sum_squares = sum_over_pairs(pairs, i, [&](std::size_t e, std::uint32_t) {
             return squared_length<D>(gradient[e]);
         });
         Vec<D> walls_sum(0);
@@ -82,18 +84,18 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
             const auto wall_velocity = context.boundary->velocities();
             const NeighbourList& walls = context.boundary_neighbours;
 #pragma omp simd
-            for (std::uint32_t e = walls.start[i]; e < walls.start[i + 1]; ++e) {
+            for (std::size_t e = walls.start[i]; e < walls.start[i + 1]; ++e) {
                 const std::uint32_t b = walls.index[e];
                 const Vec<D> x_ib = state.position[i] - xb[b];
                 const Real r = std::sqrt(squared_length<D>(x_ib));
                 wall_gradient[e] =
                     params.rest_density * volume[b] * boundary_gradient(kernel, x_ib, r);
             }
-            walls_sum = sum_over_pairs(walls, i, [&](std::uint32_t e, std::uint32_t) {
+            walls_sum = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t) {
                 return wall_gradient[e];
             });
             if (moving)
-                wall_motion_[i] = sum_over_pairs(walls, i, [&](std::uint32_t e, std::uint32_t b) {
+                wall_motion_[i] = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
                     return glm::dot(wall_gradient[e], wall_velocity[b]);
                 });
         }
@@ -153,11 +155,15 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
         // (density solve) or the rate itself (divergence solve).
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
-            Real rate = sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t j) {
-                return glm::dot(gradient[e], state.velocity[i] - state.velocity[j]);
-            });
+            // Plain loops over the fluid pairs here and in correct_velocities:
+            // their terms are a few products, and gathering v_j (s_j) into
+            // vector registers costs more than it saves (measured: both
+            // solves 1.8-3x slower with AVX-512 gathers).
+            Real rate = 0;
+            for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
+                rate += glm::dot(gradient[e], state.velocity[i] - state.velocity[pairs.index[e]]);
             if (walls)
-                rate += sum_over_pairs(*walls, i, [&](std::uint32_t e, std::uint32_t) {
+                rate += sum_over_pairs(*walls, i, [&](std::size_t e, std::uint32_t) {
                     return glm::dot(wall_gradient[e], state.velocity[i]);
                 });
             if (!wall_motion_.empty())
@@ -227,11 +233,11 @@ void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>&
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         const Real s_i = stiffness[i];
-        Vec<D> dv = -sum_over_pairs(pairs, i, [&](std::uint32_t e, std::uint32_t j) {
-            return (s_i + stiffness[j]) * gradient[e];
-        });
+        Vec<D> dv(0);
+        for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
+            dv -= (s_i + stiffness[pairs.index[e]]) * gradient[e];
         if (walls)
-            dv -= sum_over_pairs(*walls, i, [&](std::uint32_t e, std::uint32_t) {
+            dv -= sum_over_pairs(*walls, i, [&](std::size_t e, std::uint32_t) {
                 return (s_i + s_i) * wall_gradient[e];
             });
         state.velocity[i] += dv;

@@ -9,6 +9,9 @@
 #include <limits>
 #include <numeric>
 #include <omp.h>
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#include <immintrin.h>
+#endif
 #include <stdexcept>
 
 namespace sph {
@@ -77,12 +80,33 @@ void squared_gaps(std::size_t count, const Real* __restrict x, const Real* __res
 }
 
 // The candidates closer than r2, other than `self`, written without a branch
-// (a neighbour is ~1 candidate in 8, a branch on it mispredicts).
+// (a neighbour is ~1 candidate in 8, a branch on it mispredicts). `row` has
+// room for `count` entries.
 std::uint32_t select_neighbours(std::size_t count, const Real* __restrict distance2,
                                 const std::uint32_t* __restrict index, Real r2, std::uint32_t self,
                                 std::uint32_t* __restrict row) {
     std::uint32_t found = 0;
-    for (std::size_t m = 0; m < count; ++m) {
+    std::size_t m = 0;
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+    // Eight candidates at a time: compare, compress the kept indices to the
+    // front of a register, store all eight and advance by the number kept
+    // (GCC does not vectorise this "stream compaction" by itself; it was 3/4
+    // of the listing's time). Stored from a register: a compressing store to
+    // memory is microcoded on AMD Zen 4. The eight stored never pass
+    // row[m + 8], within the row's room since found <= m.
+    const __m512d limit = _mm512_set1_pd(r2);
+    const __m256i me = _mm256_set1_epi32(static_cast<int>(self));
+    for (; m + 8 <= count; m += 8) {
+        const __mmask8 close =
+            _mm512_cmp_pd_mask(_mm512_loadu_pd(distance2 + m), limit, _CMP_LT_OQ);
+        const __m256i candidates = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(index + m));
+        const __mmask8 keep = close & _mm256_cmpneq_epi32_mask(candidates, me);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(row + found),
+                            _mm256_maskz_compress_epi32(keep, candidates));
+        found += static_cast<std::uint32_t>(std::popcount(static_cast<unsigned>(keep)));
+    }
+#endif
+    for (; m < count; ++m) {
         row[found] = index[m];
         found += (distance2[m] < r2) & (index[m] != self);
     }

@@ -13,6 +13,7 @@
 
 #include "sph/effects/effect.hpp"
 #include "sph/kernels.hpp"
+#include "sph/neighbours/neighbour_sum.hpp"
 
 #include <cmath>
 
@@ -33,12 +34,11 @@ class Xsph final : public Effect<D> {
             const Real scale = 2 * epsilon_ * params.mass / in.dt;
 #pragma omp parallel for schedule(dynamic, 256)
             for (std::size_t i = 0; i < n; ++i) {
-                Vec<D> a(0);
-                for (std::uint32_t j : in.neighbours.of(i)) {
+                const Vec<D> a = sum_over_neighbours(in.neighbours, i, [&](std::uint32_t j) {
                     const Real r = std::sqrt(squared_length<D>(state.position[i] - state.position[j]));
-                    a += (kernel.W(r) / (state.density[i] + state.density[j])) *
-                         (state.velocity[j] - state.velocity[i]);
-                }
+                    return (kernel.W(r) / (state.density[i] + state.density[j])) *
+                           (state.velocity[j] - state.velocity[i]);
+                });
                 state.acceleration[i] += scale * a;
             }
         });

@@ -67,9 +67,10 @@ Vec<D> pair_gradient(const Kernel& kernel, const State<D>& state, std::size_t i,
                      const Vec<D>& x_ij, Real r) {
     if constexpr (Kernel::smooth_at_origin)
         return kernel.dW_over_r(r) * x_ij; // a product: the force loops vectorise
-    if (r > 1e-12 * kernel.h)
+    else if (r > 1e-12 * kernel.h)
         return kernel.dW_over_r(r) * x_ij;
-    return kernel.dW(r) * pair_direction(state, i, j, x_ij, r, kernel.h);
+    else
+        return kernel.dW(r) * pair_direction(state, i, j, x_ij, r, kernel.h);
 }
 
 // grad_i W(x_i - x_b) for a fluid particle and a boundary particle; a fluid
@@ -80,7 +81,8 @@ template <int D, class Kernel>
 Vec<D> boundary_gradient(const Kernel& kernel, const Vec<D>& x_ib, Real r) {
     if constexpr (Kernel::smooth_at_origin)
         return kernel.dW_over_r(r) * x_ib;
-    return r > 1e-12 * kernel.h ? kernel.dW_over_r(r) * x_ib : Vec<D>(0);
+    else
+        return r > 1e-12 * kernel.h ? kernel.dW_over_r(r) * x_ib : Vec<D>(0);
 }
 
 } // namespace sph

@@ -17,12 +17,29 @@
 
 namespace sph {
 
+// Pi_ij of one pair, from v_ij . x_ij, rho_i + rho_j and r^2. Receding pairs
+// (v . x >= 0) give 0: a select, not a branch, and one division (the rest of
+// Pi grad W is products). At r = 0, v . x is 0 too.
+struct MonaghanViscosity {
+    Real nu_scale; // 2 alpha h c
+    Real eps;      // 0.01 h^2
+
+    Real operator()(Real rate, Real density_sum, Real r2) const {
+        const Real v_dot_x = rate < 0 ? rate : 0; // not std::min: its reference
+                                                  // keeps the loop scalar
+        return -nu_scale * v_dot_x / (density_sum * (r2 + eps));
+    }
+};
+
 template <int D>
 class ArtificialViscosity final : public Effect<D> {
   public:
     explicit ArtificialViscosity(Real alpha) : alpha_(alpha) {}
     std::string_view name() const override { return "artificial_viscosity"; }
     Real alpha() const { return alpha_; }
+    MonaghanViscosity pair_viscosity(const Params<D>& params) const {
+        return {2 * alpha_ * params.h * params.sound_speed(), Real(0.01) * params.h * params.h};
+    }
 
     void apply(const Params<D>& params, const EffectInputs<D>& in, State<D>& state) override {
         with_kernel<D>(params.kernel, params.h,
@@ -34,23 +51,16 @@ class ArtificialViscosity final : public Effect<D> {
     void add(const Params<D>& params, const Kernel& kernel, const EffectInputs<D>& in,
              State<D>& state) const {
         const std::size_t n = state.size();
-        const Real eps = Real(0.01) * params.h * params.h;
-        const Real nu_scale = 2 * alpha_ * params.h * params.sound_speed();
+        const MonaghanViscosity Pi = pair_viscosity(params);
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
             Vec<D> a = -sum_over_neighbours(in.neighbours, i, [&](std::uint32_t j) {
                 const Vec<D> x_ij = state.position[i] - state.position[j];
                 const Real r2 = squared_length<D>(x_ij);
                 const Real r = std::sqrt(r2);
-                // Receding pairs (v . x >= 0) add nothing: a select, not a
-                // branch, and one division (the rest of Pi grad W is
-                // products). At r = 0, v . x is 0 too.
-                const Real rate = glm::dot(state.velocity[i] - state.velocity[j], x_ij);
-                const Real v_dot_x = rate < 0 ? rate : 0; // not std::min: its reference
-                                                          // keeps the loop scalar
-                const Real Pi = -nu_scale * v_dot_x /
-                                ((state.density[i] + state.density[j]) * (r2 + eps));
-                return (params.mass * Pi * gradient_factor(kernel, r)) * x_ij;
+                const Real Pi_ij = Pi(glm::dot(state.velocity[i] - state.velocity[j], x_ij),
+                                      state.density[i] + state.density[j], r2);
+                return (params.mass * Pi_ij * gradient_factor(kernel, r)) * x_ij;
             });
             // The walls too (as Akinci et al. 2012 do): a wall particle is
             // fluid with the particle's density, mass rho0 V_b and its own
@@ -67,10 +77,9 @@ class ArtificialViscosity final : public Effect<D> {
                     const Vec<D> x_ib = state.position[i] - xb[b];
                     const Real r2 = squared_length<D>(x_ib);
                     const Real r = std::sqrt(r2);
-                    const Real rate = glm::dot(state.velocity[i] - wall_velocity[b], x_ib);
-                    const Real v_dot_x = rate < 0 ? rate : 0;
-                    const Real Pi = -nu_scale * v_dot_x / (2 * state.density[i] * (r2 + eps));
-                    return (params.rest_density * volume[b] * Pi * gradient_factor(kernel, r)) *
+                    const Real Pi_ib = Pi(glm::dot(state.velocity[i] - wall_velocity[b], x_ib),
+                                          2 * state.density[i], r2);
+                    return (params.rest_density * volume[b] * Pi_ib * gradient_factor(kernel, r)) *
                            x_ib;
                 });
             }

@@ -60,9 +60,13 @@ struct StepContext {
         }
     }
 
-    // Adds every effect's acceleration, each timed under its own name.
-    void apply_effects(const Params<D>& params, State<D>& state) {
+    // Adds every effect's acceleration, each timed under its own name, but
+    // `merged`, one the solver already added with its own pass.
+    void apply_effects(const Params<D>& params, State<D>& state,
+                       const Effect<D>* merged = nullptr) {
         for (const auto& effect : effects) {
+            if (effect.get() == merged)
+                continue;
             auto timed = time(effect->name());
             effect->apply(params, {neighbours, boundary, boundary_neighbours, dt}, state);
         }

@@ -22,17 +22,27 @@ void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepCon
 template <int D>
 void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& state,
                                            StepContext<D>& context) {
+    // Monaghan's artificial viscosity, when the scene names it, joins the
+    // pressure pass (pressure_acceleration.hpp): the stage "pressure" then
+    // times both.
+    const ArtificialViscosity<D>* artificial = nullptr;
+    for (const auto& effect : context.effects)
+        if (const auto* found = dynamic_cast<const ArtificialViscosity<D>*>(effect.get()))
+            artificial = found;
+    const MonaghanViscosity viscosity =
+        artificial ? artificial->pair_viscosity(params) : MonaghanViscosity{};
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
         density_and_pressure(params, kernel, context, state);
-        // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2) grad W, walls included.
+        // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij) grad W,
+        // walls included.
         auto timed = context.time("pressure");
         compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
-                                      context.boundary_neighbours, pressure_term_, state);
+                                      context.boundary_neighbours,
+                                      artificial ? &viscosity : nullptr, pressure_term_, state);
     });
-    // 3. The effects the scene names: viscosity (Morris), Monaghan's
-    // artificial viscosity, gravity, ...
-    context.apply_effects(params, state);
+    // 3. The other effects the scene names: viscosity (Morris), gravity, ...
+    context.apply_effects(params, state, artificial);
 }
 
 template <int D>

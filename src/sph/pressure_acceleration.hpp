@@ -10,10 +10,13 @@
 // hold the fluid up as fluid below would; Akinci et al. 2012's single term
 // p_i / rho_i^2 (eq. 10, for one layer) would leave the bottom layer at twice
 // the hydrostatic pressure.
-// With Monaghan's artificial viscosity given (sph/effects/artificial_viscosity.hpp),
-// its Pi_ij joins the pressure terms of the same pair, as in Monaghan 1992,
-// eq. 3.3 with 4.1: one pass over the pairs instead of two, sharing the
-// gathers of the neighbour's position and density, r and grad W.
+// The viscosities the scene names join the same pass, which shares among
+// them the gathers of the neighbour's position, velocity and density, r and
+// the kernel's derivative (one pass over the pairs instead of up to three):
+// Monaghan's artificial viscosity adds its Pi_ij to the pair's pressure terms
+// (Monaghan 1992, eq. 3.3 with 4.1; sph/effects/artificial_viscosity.hpp),
+// Morris's laminar viscosity its own term along v_ij
+// (sph/effects/laminar_viscosity.hpp).
 // Overwrites state.acceleration: it is the first force of the step.
 // p / rho^2 is computed once per particle into `pressure_term` (the caller's
 // scratch, kept between steps), not once per pair: a division per pair was a
@@ -21,6 +24,7 @@
 
 #include "sph/boundary_particles.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
+#include "sph/effects/laminar_viscosity.hpp"
 #include "sph/headroom.hpp"
 #include "sph/neighbours/neighbour_sum.hpp"
 #include "sph/pair_direction.hpp"
@@ -31,59 +35,84 @@
 
 namespace sph {
 
+// The viscosities that join the pressure pass; null: not in this scene.
+struct PairViscosities {
+    const MonaghanViscosity* artificial = nullptr;
+    const MorrisViscosity* laminar = nullptr;
+    Real mu = 0; // Pa.s, with `laminar`
+};
+
 template <int D, class Kernel>
 void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel,
                                    const NeighbourList& neighbours,
                                    const BoundaryParticles<D>* boundary,
                                    const NeighbourList& boundary_neighbours,
-                                   const MonaghanViscosity* viscosity,
+                                   const PairViscosities& viscosities,
                                    std::vector<Real>& pressure_term, State<D>& state) {
     const std::size_t n = state.size();
     resize_with_headroom(pressure_term, n);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
         pressure_term[i] = state.pressure[i] / (state.density[i] * state.density[i]);
-    // Compiled with and without the viscosity, so neither loop tests for it.
-    const auto accelerate = [&](auto with_viscosity) {
-        constexpr bool viscous = decltype(with_viscosity)::value;
-        const MonaghanViscosity Pi = viscous ? *viscosity : MonaghanViscosity{};
+    // Compiled for each set of viscosities, so no loop tests for them.
+    const auto accelerate = [&](auto artificial_flag, auto laminar_flag) {
+        constexpr bool artificial = decltype(artificial_flag)::value;
+        constexpr bool laminar = decltype(laminar_flag)::value;
+        const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
+        const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
+        const Real two_mu = 2 * viscosities.mu;
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
             const Real pi_over_rho2 = pressure_term[i];
-            Vec<D> a = -sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
+            const Real viscous_scale = laminar ? two_mu / state.density[i] : 0;
+            Vec<D> a = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
                 const Vec<D> x_ij = state.position[i] - state.position[j];
                 const Real r2 = squared_length<D>(x_ij);
                 const Real r = std::sqrt(r2);
+                const Vec<D> v_ij = state.velocity[i] - state.velocity[j];
                 Real factor = pi_over_rho2 + pressure_term[j];
-                if constexpr (viscous)
-                    factor += Pi(glm::dot(state.velocity[i] - state.velocity[j], x_ij),
-                                 state.density[i] + state.density[j], r2);
-                return (params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
+                if constexpr (artificial)
+                    factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
+                Vec<D> term = -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
+                if constexpr (laminar)
+                    term += (viscous_scale *
+                             morris.fluid(kernel, params.mass, state.density[j], r, r2)) *
+                            v_ij;
+                return term;
             });
             if (boundary) {
                 const auto xb = boundary->positions();
                 const auto volume = boundary->volumes();
                 // A local span, not boundary->velocity(b): the loop then vectorises.
                 const auto wall_velocity = boundary->velocities();
-                a -= sum_over_neighbours(boundary_neighbours, i, [&](std::uint32_t b) {
+                a += sum_over_neighbours(boundary_neighbours, i, [&](std::uint32_t b) {
                     const Vec<D> x_ib = state.position[i] - xb[b];
                     const Real r2 = squared_length<D>(x_ib);
                     const Real r = std::sqrt(r2);
+                    const Vec<D> v_ib = state.velocity[i] - wall_velocity[b];
                     Real factor = 2 * pi_over_rho2;
-                    if constexpr (viscous)
-                        factor += Pi(glm::dot(state.velocity[i] - wall_velocity[b], x_ib),
-                                     2 * state.density[i], r2);
-                    return (params.rest_density * volume[b] * factor) *
-                           boundary_gradient(kernel, x_ib, r);
+                    if constexpr (artificial)
+                        factor += Pi(glm::dot(v_ib, x_ib), 2 * state.density[i], r2);
+                    Vec<D> term = -(params.rest_density * volume[b] * factor) *
+                                  boundary_gradient(kernel, x_ib, r);
+                    if constexpr (laminar)
+                        term += (viscous_scale * morris.wall(kernel, volume[b], r, r2)) * v_ib;
+                    return term;
                 });
             }
             state.acceleration[i] = a;
         }
     };
-    if (viscosity)
-        accelerate(std::true_type{});
+    const auto with_laminar = [&](auto artificial_flag) {
+        if (viscosities.laminar)
+            accelerate(artificial_flag, std::true_type{});
+        else
+            accelerate(artificial_flag, std::false_type{});
+    };
+    if (viscosities.artificial)
+        with_laminar(std::true_type{});
     else
-        accelerate(std::false_type{});
+        with_laminar(std::false_type{});
 }
 
 } // namespace sph

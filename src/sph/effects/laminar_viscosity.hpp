@@ -21,12 +21,34 @@
 
 namespace sph {
 
+// One pair's share of Morris's sum, before the (2 mu / rho_i) in front and
+// the velocity difference after it; one division each.
+struct MorrisViscosity {
+    Real eps; // 0.0025 h^2
+
+    // A fluid neighbour of mass m and density rho_j. x . grad W = r dW/dr:
+    // no direction needed, fine at r = 0.
+    template <class Kernel>
+    Real fluid(const Kernel& kernel, Real m, Real rho_j, Real r, Real r2) const {
+        const Real x_dot_grad = r * kernel.dW(r);
+        return m * x_dot_grad / (rho_j * (r2 + eps));
+    }
+    // A boundary particle of volume V_b (fluid of density rho0, mass rho0 V_b).
+    template <class Kernel>
+    Real wall(const Kernel& kernel, Real volume, Real r, Real r2) const {
+        return volume * r * kernel.dW(r) / (r2 + eps);
+    }
+};
+
 template <int D>
 class LaminarViscosity final : public Effect<D> {
   public:
     explicit LaminarViscosity(Real mu) : mu_(mu) {}
     std::string_view name() const override { return "viscosity"; }
     Real mu() const { return mu_; }
+    MorrisViscosity pair_viscosity(const Params<D>& params) const {
+        return {Real(0.0025) * params.h * params.h};
+    }
 
     void apply(const Params<D>& params, const EffectInputs<D>& in, State<D>& state) override {
         with_kernel<D>(params.kernel, params.h,
@@ -38,7 +60,7 @@ class LaminarViscosity final : public Effect<D> {
     void add(const Params<D>& params, const Kernel& kernel, const EffectInputs<D>& in,
              State<D>& state) const {
         const std::size_t n = state.size();
-        const Real eps = Real(0.0025) * params.h * params.h;
+        const MorrisViscosity morris = pair_viscosity(params);
         const Real two_mu = 2 * mu_;
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
@@ -46,10 +68,7 @@ class LaminarViscosity final : public Effect<D> {
                 const Vec<D> x_ij = state.position[i] - state.position[j];
                 const Real r2 = squared_length<D>(x_ij);
                 const Real r = std::sqrt(r2);
-                // x . grad W = r dW/dr: no direction needed, fine at r = 0.
-                // One division per pair, not two (divisions bound this loop).
-                const Real x_dot_grad = r * kernel.dW(r);
-                return (params.mass * x_dot_grad / (state.density[j] * (r2 + eps))) *
+                return morris.fluid(kernel, params.mass, state.density[j], r, r2) *
                        (state.velocity[i] - state.velocity[j]);
             });
             if (in.boundary) {
@@ -61,7 +80,7 @@ class LaminarViscosity final : public Effect<D> {
                     const Vec<D> x_ib = state.position[i] - xb[b];
                     const Real r2 = squared_length<D>(x_ib);
                     const Real r = std::sqrt(r2);
-                    return (volume[b] * r * kernel.dW(r) / (r2 + eps)) *
+                    return morris.wall(kernel, volume[b], r, r2) *
                            (state.velocity[i] - wall_velocity[b]);
                 });
             }

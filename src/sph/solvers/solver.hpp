@@ -9,6 +9,7 @@
 #include "sph/stage_times.hpp"
 #include "sph/time_step.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -61,11 +62,11 @@ struct StepContext {
     }
 
     // Adds every effect's acceleration, each timed under its own name, but
-    // `merged`, one the solver already added with its own pass.
+    // those in `merged`, which the solver added in a pass of its own.
     void apply_effects(const Params<D>& params, State<D>& state,
-                       const Effect<D>* merged = nullptr) {
+                       std::span<const Effect<D>* const> merged = {}) {
         for (const auto& effect : effects) {
-            if (effect.get() == merged)
+            if (std::find(merged.begin(), merged.end(), effect.get()) != merged.end())
                 continue;
             auto timed = time(effect->name());
             effect->apply(params, {neighbours, boundary, boundary_neighbours, dt}, state);

@@ -4,6 +4,8 @@
 #include "sph/pressure_acceleration.hpp"
 #include "sph/solvers/density_with_walls.hpp"
 
+#include <array>
+
 namespace sph {
 
 namespace {
@@ -22,27 +24,35 @@ void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepCon
 template <int D>
 void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& state,
                                            StepContext<D>& context) {
-    // Monaghan's artificial viscosity, when the scene names it, joins the
-    // pressure pass (pressure_acceleration.hpp): the stage "pressure" then
-    // times both.
+    // Monaghan's artificial viscosity and Morris's laminar one, when the
+    // scene names them, join the pressure pass (pressure_acceleration.hpp):
+    // the stage "pressure" then times them too.
     const ArtificialViscosity<D>* artificial = nullptr;
-    for (const auto& effect : context.effects)
-        if (const auto* found = dynamic_cast<const ArtificialViscosity<D>*>(effect.get()))
-            artificial = found;
-    const MonaghanViscosity viscosity =
+    const LaminarViscosity<D>* laminar = nullptr;
+    for (const auto& effect : context.effects) {
+        if (const auto* a = dynamic_cast<const ArtificialViscosity<D>*>(effect.get()))
+            artificial = a;
+        if (const auto* l = dynamic_cast<const LaminarViscosity<D>*>(effect.get()))
+            laminar = l;
+    }
+    const MonaghanViscosity monaghan =
         artificial ? artificial->pair_viscosity(params) : MonaghanViscosity{};
+    const MorrisViscosity morris = laminar ? laminar->pair_viscosity(params) : MorrisViscosity{};
+    const PairViscosities viscosities{artificial ? &monaghan : nullptr,
+                                      laminar ? &morris : nullptr, laminar ? laminar->mu() : 0};
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
         density_and_pressure(params, kernel, context, state);
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij) grad W,
-        // walls included.
+        // walls included, and Morris's viscosity.
         auto timed = context.time("pressure");
         compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
-                                      context.boundary_neighbours,
-                                      artificial ? &viscosity : nullptr, pressure_term_, state);
+                                      context.boundary_neighbours, viscosities, pressure_term_,
+                                      state);
     });
-    // 3. The other effects the scene names: viscosity (Morris), gravity, ...
-    context.apply_effects(params, state, artificial);
+    // 3. The other effects the scene names: gravity, XSPH, ...
+    const std::array<const Effect<D>*, 2> merged{artificial, laminar};
+    context.apply_effects(params, state, merged);
 }
 
 template <int D>

@@ -2,8 +2,9 @@
 // dam break, wcsph) is stepped with effects added one by one; for each
 // configuration it prints the time per step and per particle-step, and what
 // the added effect's stage costs over the configuration it adds to (from the
-// simulation's stage times; wcsph times its artificial viscosity inside
-// "pressure", so that row is the growth of the pressure stage).
+// simulation's stage times; wcsph times its artificial and laminar
+// viscosities inside "pressure", so those rows are the growth of the
+// pressure stage).
 //   sphclip_bench_effects [--quick] [--steps N] [--csv FILE]
 
 #include "io/scene_setup.hpp"
@@ -72,7 +73,7 @@ int main(int argc, char** argv) {
         {"pressure only (no effects, no viscosity)", "", {}},
         {"+ gravity", "gravity", effects(gravity), 0},
         {"+ artificial viscosity (alpha 0.02)", "pressure", effects(artificial), 1},
-        {"+ laminar viscosity (Morris, 1 Pa.s)", "viscosity", effects(morris), 2},
+        {"+ laminar viscosity (Morris, 1 Pa.s)", "pressure", effects(morris), 2},
         {"  (the seed's viscosity instead of Morris's)", "viscosity", effects(seed), 2},
         {"+ XSPH (epsilon 0.5)", "xsph", effects(xsph), 3},
         {"+ surface tension (gamma 1)", "surface_tension", effects(tension), 5},

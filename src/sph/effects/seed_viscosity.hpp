@@ -7,7 +7,8 @@
 // accelerations are equal and opposite and momentum is conserved. Walls
 // take no part: the seed's walls reflect. The scene's `effects.viscosity`
 // with model "seed" (the seed solver's default); the seed solver adds it to
-// its pressure force, which is the report's model term by term.
+// its pressure force in the same pass over the pairs, which is the report's
+// model term by term (solvers/seed.cpp).
 
 #include "sph/effects/effect.hpp"
 #include "sph/kernels.hpp"
@@ -16,13 +17,20 @@
 
 namespace sph {
 
-// The acceleration particle j gives particle i.
+// The acceleration particle j, at distance r, gives particle i.
+template <int D>
+Vec<D> seed_viscous_acceleration(const Params<D>& params, const ViscosityLaplacian<D>& laplacian,
+                                 Real mu, const State<D>& state, std::size_t i, std::size_t j,
+                                 Real r) {
+    return (-params.mass * mu * laplacian.laplacian(r) / (state.density[i] * state.density[j])) *
+           (state.velocity[i] - state.velocity[j]);
+}
+
 template <int D>
 Vec<D> seed_viscous_acceleration(const Params<D>& params, const ViscosityLaplacian<D>& laplacian,
                                  Real mu, const State<D>& state, std::size_t i, std::size_t j) {
     const Real r = std::sqrt(squared_length<D>(state.position[i] - state.position[j]));
-    return (-params.mass * mu * laplacian.laplacian(r) / (state.density[i] * state.density[j])) *
-           (state.velocity[i] - state.velocity[j]);
+    return seed_viscous_acceleration(params, laplacian, mu, state, i, j, r);
 }
 
 template <int D>

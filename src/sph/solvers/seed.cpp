@@ -7,6 +7,7 @@
 #include "sph/pair_direction.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace sph {
@@ -17,6 +18,10 @@ SeedSolver<D>::SeedSolver(KernelKind kernel) : kernel_(kernel) {}
 template <int D>
 void SeedSolver<D>::compute_accelerations(const Params<D>& params, State<D>& state,
                                           StepContext<D>& context) {
+    const SeedViscosity<D>* viscosity = nullptr;
+    for (const auto& effect : context.effects)
+        if (const auto* v = dynamic_cast<const SeedViscosity<D>*>(effect.get()))
+            viscosity = v;
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours closer than h (the seed's spatial hash by default).
         context.find_neighbours(state.position, params.h);
@@ -26,13 +31,15 @@ void SeedSolver<D>::compute_accelerations(const Params<D>& params, State<D>& sta
             compute_density(params, kernel, context.neighbours, state);
             compute_pressure_linear(params, state);
         }
-        // 3. The pressure half of the seed's pair force f_ij, a = f / rho.
+        // 3. The seed's pair force f_ij, a = f / rho: its pressure half, and
+        // its viscous half (effects/seed_viscosity.hpp) when the scene has
+        // it, in the same pass over the pairs (timed as "pressure").
         auto timed = context.time("pressure");
-        compute_seed_pressure(params, kernel, context.neighbours, state);
+        compute_seed_pressure(params, kernel, context.neighbours, viscosity, state);
     });
-    // 4. Its viscous half (effects/seed_viscosity.hpp), gravity and the other
-    // effects the scene names.
-    context.apply_effects(params, state);
+    // 4. Gravity and the other effects the scene names.
+    const std::array<const Effect<D>*, 1> merged{viscosity};
+    context.apply_effects(params, state, merged);
 }
 
 template <int D>
@@ -58,9 +65,10 @@ void SeedSolver<D>::update_fields(const Params<D>& params, State<D>& state,
 //   m/(pi h^5 rho_j) (1-q) [45/2 K' (rho_i + rho_j - 2 rho0) (1-q)/q r_ij - 45 mu v_ij].
 // The seed's 1/q only stands for the direction r_ij / r; at r = 0 the
 // magnitude is finite and coincident_direction() supplies the direction.
-// The solver computes the pressure half here; the viscous half is the
-// `viscosity` effect with model "seed" (effects/seed_viscosity.hpp), so a
-// scene without viscosity does not pay for it.
+// The pressure half is the solver's; the viscous half is the `viscosity`
+// effect with model "seed" (effects/seed_viscosity.hpp), so a scene without
+// viscosity does not pay for it. With it, the solver adds both halves in one
+// pass over the pairs, sharing r and the densities.
 //
 // The acceleration it gives i, f_ij / rho_i = m / (rho_i rho_j) [...], is
 // symmetric in i and j but for the sign of r_ij and v_ij: this is why the seed
@@ -79,6 +87,10 @@ struct SeedPressureTerm {
     Vec<D> operator()(const State<D>& state, std::size_t i, std::size_t j) const {
         const Vec<D> r_ij = state.position[i] - state.position[j];
         const Real r = std::sqrt(squared_length<D>(r_ij));
+        return (*this)(state, i, j, r_ij, r);
+    }
+    Vec<D> operator()(const State<D>& state, std::size_t i, std::size_t j, const Vec<D>& r_ij,
+                      Real r) const {
         const Vec<D> direction = pair_direction(state, i, j, r_ij, r, params.h);
         const Real mean_pressure = Real(0.5) * (state.pressure[i] + state.pressure[j]);
         return (-params.mass * mean_pressure * kernel.dW(r) /
@@ -109,14 +121,22 @@ Vec<D> seed_pair_force(const Params<D>& params, const State<D>& state, std::size
 // count; the seed's once-per-pair evaluation gives the same values.
 template <int D, class Kernel>
 void compute_seed_pressure(const Params<D>& params, const Kernel& kernel,
-                           const NeighbourList& neighbours, State<D>& state) {
+                           const NeighbourList& neighbours, const SeedViscosity<D>* viscosity,
+                           State<D>& state) {
     const std::size_t n = state.size();
     const SeedPressureTerm<D, Kernel> term{params, kernel};
+    const ViscosityLaplacian<D> laplacian(params.h);
+    const Real mu = viscosity ? viscosity->mu() : 0;
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         Vec<D> acceleration(0);
-        for (std::uint32_t j : neighbours.of(i))
-            acceleration += term(state, i, j);
+        for (std::uint32_t j : neighbours.of(i)) {
+            const Vec<D> r_ij = state.position[i] - state.position[j];
+            const Real r = std::sqrt(squared_length<D>(r_ij));
+            acceleration += term(state, i, j, r_ij, r);
+            if (viscosity)
+                acceleration += seed_viscous_acceleration(params, laplacian, mu, state, i, j, r);
+        }
         state.acceleration[i] = acceleration;
     }
 }
@@ -126,7 +146,8 @@ template class SeedSolver<3>;
 template <int D>
 void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
                               State<D>& state) {
-    compute_seed_pressure(params, SeedKernel<D>(params.h), neighbours, state);
+    compute_seed_pressure(params, SeedKernel<D>(params.h), neighbours,
+                          static_cast<const SeedViscosity<D>*>(nullptr), state);
     const NeighbourList no_walls;
     SeedViscosity<D>(params.viscosity).apply(params, {neighbours, nullptr, no_walls, 0}, state);
 }

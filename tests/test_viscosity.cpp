@@ -1,8 +1,8 @@
 // The viscosity effects (src/sph/effects/seed_viscosity.hpp,
 // laminar_viscosity.hpp, artificial_viscosity.hpp, xsph.hpp): which the scene
 // gets, that their pair terms conserve momentum, that Morris's model gives
-// the fluid's own viscous acceleration, and that a viscous fluid spreads
-// slowly.
+// the fluid's own viscous acceleration, that wcsph's pressure pass adds them
+// as the effects do, and that a viscous fluid spreads slowly.
 #include "io/input_error.hpp"
 #include "io/scene_setup.hpp"
 #include "sph/density.hpp"
@@ -11,6 +11,7 @@
 #include "sph/effects/seed_viscosity.hpp"
 #include "sph/effects/xsph.hpp"
 #include "sph/neighbours/all_pairs.hpp"
+#include "sph/pressure_acceleration.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -165,6 +166,52 @@ TEST_CASE("every viscosity effect conserves momentum to rounding", "[viscosity][
         }
         REQUIRE(magnitude > 0);
         CHECK(glm::length(total) < 1e-12 * magnitude);
+    }
+}
+
+TEST_CASE("wcsph's pressure pass adds both viscosities as their effects do",
+          "[viscosity][effects]") {
+    // The patch with wall particles around it, pressures of either sign and
+    // scrambled velocities: the merged pass against the pressure alone
+    // followed by the two effects, walls included.
+    for (const char* kernel_name : {"wendland_c2", "cubic_spline"}) {
+        INFO(kernel_name);
+        Patch p(kernel_name);
+        scramble(p.state);
+        const auto walls = BoundaryParticles<2>::box_walls(
+            {Vec<2>(0), Vec<2>(0.2)}, 0.005, p.params.h, p.params.mass / p.params.rest_density);
+        NeighbourList wall_neighbours;
+        walls.find_neighbours(p.state.position, wall_neighbours);
+        REQUIRE(wall_neighbours.pair_count() > 0);
+        for (std::size_t i = 0; i < p.state.size(); ++i)
+            p.state.pressure[i] = 2000 * (p.state.density[i] / p.params.rest_density - 1) +
+                                  300 * std::sin(Real(i));
+        ArtificialViscosity<2> artificial(0.1);
+        LaminarViscosity<2> laminar(2.0);
+        const MonaghanViscosity monaghan = artificial.pair_viscosity(p.params);
+        const MorrisViscosity morris = laminar.pair_viscosity(p.params);
+        std::vector<Real> scratch;
+        std::vector<Vec<2>> merged, separate, pressure_only;
+        with_kernel<2>(p.params.kernel, p.params.h, [&](const auto& kernel) {
+            compute_pressure_acceleration(p.params, kernel, p.neighbours, &walls, wall_neighbours,
+                                          {&monaghan, &morris, laminar.mu()}, scratch, p.state);
+            merged = p.state.acceleration;
+            compute_pressure_acceleration(p.params, kernel, p.neighbours, &walls, wall_neighbours,
+                                          {}, scratch, p.state);
+            pressure_only = p.state.acceleration;
+        });
+        const EffectInputs<2> in{p.neighbours, &walls, wall_neighbours, 1e-3};
+        artificial.apply(p.params, in, p.state);
+        laminar.apply(p.params, in, p.state);
+        separate = p.state.acceleration;
+        Real largest = 0, difference = 0, viscous = 0;
+        for (std::size_t i = 0; i < merged.size(); ++i) {
+            largest = std::max(largest, glm::length(separate[i]));
+            difference = std::max(difference, glm::length(merged[i] - separate[i]));
+            viscous = std::max(viscous, glm::length(separate[i] - pressure_only[i]));
+        }
+        CHECK(viscous > 0.05 * largest); // the viscosities matter here
+        CHECK(difference < 1e-12 * largest);
     }
 }
 

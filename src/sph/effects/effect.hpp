@@ -60,4 +60,14 @@ class Effect {
 template <int D>
 using EffectList = std::vector<std::unique_ptr<Effect<D>>>;
 
+// The effect of kind T in the list, or null: for a solver that computes it
+// inside a pass of its own (and then tells apply_effects to skip it).
+template <class T, int D>
+const T* find_effect(const EffectList<D>& effects) {
+    for (const auto& effect : effects)
+        if (const auto* found = dynamic_cast<const T*>(effect.get()))
+            return found;
+    return nullptr;
+}
+
 } // namespace sph

@@ -18,10 +18,7 @@ SeedSolver<D>::SeedSolver(KernelKind kernel) : kernel_(kernel) {}
 template <int D>
 void SeedSolver<D>::compute_accelerations(const Params<D>& params, State<D>& state,
                                           StepContext<D>& context) {
-    const SeedViscosity<D>* viscosity = nullptr;
-    for (const auto& effect : context.effects)
-        if (const auto* v = dynamic_cast<const SeedViscosity<D>*>(effect.get()))
-            viscosity = v;
+    const auto* viscosity = find_effect<SeedViscosity<D>>(context.effects);
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours closer than h (the seed's spatial hash by default).
         context.find_neighbours(state.position, params.h);

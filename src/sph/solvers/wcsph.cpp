@@ -27,14 +27,8 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
     // Monaghan's artificial viscosity and Morris's laminar one, when the
     // scene names them, join the pressure pass (pressure_acceleration.hpp):
     // the stage "pressure" then times them too.
-    const ArtificialViscosity<D>* artificial = nullptr;
-    const LaminarViscosity<D>* laminar = nullptr;
-    for (const auto& effect : context.effects) {
-        if (const auto* a = dynamic_cast<const ArtificialViscosity<D>*>(effect.get()))
-            artificial = a;
-        if (const auto* l = dynamic_cast<const LaminarViscosity<D>*>(effect.get()))
-            laminar = l;
-    }
+    const auto* artificial = find_effect<ArtificialViscosity<D>>(context.effects);
+    const auto* laminar = find_effect<LaminarViscosity<D>>(context.effects);
     const MonaghanViscosity monaghan =
         artificial ? artificial->pair_viscosity(params) : MonaghanViscosity{};
     const MorrisViscosity morris = laminar ? laminar->pair_viscosity(params) : MorrisViscosity{};

@@ -194,7 +194,7 @@ TEST_CASE("wcsph's pressure pass adds both viscosities as their effects do",
         std::vector<Vec<2>> merged, separate, pressure_only;
         with_kernel<2>(p.params.kernel, p.params.h, [&](const auto& kernel) {
             compute_pressure_acceleration(p.params, kernel, p.neighbours, &walls, wall_neighbours,
-                                          {&monaghan, &morris, laminar.mu()}, scratch, p.state);
+                                          {&monaghan, &morris}, scratch, p.state);
             merged = p.state.acceleration;
             compute_pressure_acceleration(p.params, kernel, p.neighbours, &walls, wall_neighbours,
                                           {}, scratch, p.state);

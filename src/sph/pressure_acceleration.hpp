@@ -39,7 +39,6 @@ namespace sph {
 struct PairViscosities {
     const MonaghanViscosity* artificial = nullptr;
     const MorrisViscosity* laminar = nullptr;
-    Real mu = 0; // Pa.s, with `laminar`
 };
 
 template <int D, class Kernel>
@@ -60,11 +59,10 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
         constexpr bool laminar = decltype(laminar_flag)::value;
         const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
         const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
-        const Real two_mu = 2 * viscosities.mu;
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
             const Real pi_over_rho2 = pressure_term[i];
-            const Real viscous_scale = laminar ? two_mu / state.density[i] : 0;
+            const Real viscous_scale = laminar ? morris.two_mu / state.density[i] : 0;
             Vec<D> a = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
                 const Vec<D> x_ij = state.position[i] - state.position[j];
                 const Real r2 = squared_length<D>(x_ij);

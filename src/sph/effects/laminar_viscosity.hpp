@@ -24,7 +24,8 @@ namespace sph {
 // One pair's share of Morris's sum, before the (2 mu / rho_i) in front and
 // the velocity difference after it; one division each.
 struct MorrisViscosity {
-    Real eps; // 0.0025 h^2
+    Real eps;    // 0.0025 h^2
+    Real two_mu; // Pa.s
 
     // A fluid neighbour of mass m and density rho_j. x . grad W = r dW/dr:
     // no direction needed, fine at r = 0.
@@ -47,7 +48,7 @@ class LaminarViscosity final : public Effect<D> {
     std::string_view name() const override { return "viscosity"; }
     Real mu() const { return mu_; }
     MorrisViscosity pair_viscosity(const Params<D>& params) const {
-        return {Real(0.0025) * params.h * params.h};
+        return {Real(0.0025) * params.h * params.h, 2 * mu_};
     }
 
     void apply(const Params<D>& params, const EffectInputs<D>& in, State<D>& state) override {
@@ -61,7 +62,6 @@ class LaminarViscosity final : public Effect<D> {
              State<D>& state) const {
         const std::size_t n = state.size();
         const MorrisViscosity morris = pair_viscosity(params);
-        const Real two_mu = 2 * mu_;
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
             Vec<D> a = sum_over_neighbours(in.neighbours, i, [&](std::uint32_t j) {
@@ -84,7 +84,7 @@ class LaminarViscosity final : public Effect<D> {
                            (state.velocity[i] - wall_velocity[b]);
                 });
             }
-            state.acceleration[i] += (two_mu / state.density[i]) * a;
+            state.acceleration[i] += (morris.two_mu / state.density[i]) * a;
         }
     }
 

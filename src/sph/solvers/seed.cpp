@@ -143,10 +143,8 @@ template class SeedSolver<3>;
 template <int D>
 void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
                               State<D>& state) {
-    compute_seed_pressure(params, SeedKernel<D>(params.h), neighbours,
-                          static_cast<const SeedViscosity<D>*>(nullptr), state);
-    const NeighbourList no_walls;
-    SeedViscosity<D>(params.viscosity).apply(params, {neighbours, nullptr, no_walls, 0}, state);
+    const SeedViscosity<D> viscosity(params.viscosity);
+    compute_seed_pressure(params, SeedKernel<D>(params.h), neighbours, &viscosity, state);
 }
 
 template void compute_seed_interaction<2>(const Params<2>&, const NeighbourList&, State<2>&);

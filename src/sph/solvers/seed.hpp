@@ -30,7 +30,8 @@ class SeedSolver final : public ExplicitSolver<D> {
 };
 
 // The seed's interaction force summed for every particle and divided by its
-// density: state.acceleration = (1 / rho_i) sum_j f_ij. Exposed for tests.
+// density: state.acceleration = (1 / rho_i) sum_j f_ij, by the one pass the
+// solver runs (pressure and viscous halves together). Exposed for tests.
 template <int D>
 void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
                               State<D>& state);

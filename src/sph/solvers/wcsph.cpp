@@ -33,7 +33,7 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
         artificial ? artificial->pair_viscosity(params) : MonaghanViscosity{};
     const MorrisViscosity morris = laminar ? laminar->pair_viscosity(params) : MorrisViscosity{};
     const PairViscosities viscosities{artificial ? &monaghan : nullptr,
-                                      laminar ? &morris : nullptr, laminar ? laminar->mu() : 0};
+                                      laminar ? &morris : nullptr};
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
         density_and_pressure(params, kernel, context, state);

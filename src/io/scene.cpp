@@ -493,6 +493,13 @@ double neighbours_within(int dimension, double radius) {
     return dimension == 2 ? M_PI * radius * radius : 4.0 / 3.0 * M_PI * std::pow(radius, 3);
 }
 
+// solver.kernel, "auto" resolved.
+std::string derive_kernel(const Scene& s) {
+    return s.solver.kernel != "auto" ? s.solver.kernel
+           : s.solver.name == "seed" ? "seed"
+                                     : "cubic_spline";
+}
+
 double default_smoothing_ratio(int dimension) {
     return dimension == 2 ? 2.5 : 2.2;
 }
@@ -969,6 +976,12 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
                   "Steps between spatial sorts of the particle arrays by grid cell (Morton "
                   "order), which keep neighbours near in memory; 0: never. Changes "
                   "round-off only.");
+    s.solver.precision = r.choice(
+        "solver.precision", d.solver.precision, {"auto", "single", "double"},
+        "Arithmetic of wcsph's density and pressure passes: single (float, a grid cell at a "
+        "time, about twice as fast) or double (neighbour lists); auto: single where it can "
+        "run (wcsph, a smooth kernel, the sorted grid, no XSPH or surface tension), else "
+        "double.");
 
     s.watchdog.retries =
         r.integer("watchdog.retries", d.watchdog.retries, 0, 20,
@@ -1083,6 +1096,11 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
         r.fail("solver.integrator",
                "dfsph integrates with its own scheme (symplectic Euler between its two pressure "
                "solves); verlet is for the seed and wcsph solvers");
+    if (s.solver.precision == "single") {
+        const std::string obstacle = single_precision_obstacle(s, derive_kernel(s));
+        if (!obstacle.empty())
+            r.fail("solver.precision", "single: " + obstacle);
+    }
     if (s.solver.name == "seed" && s.solver.walls == "particles")
         r.fail("solver.walls", "the seed solver's walls reflect; boundary particles are for "
                                "wcsph and dfsph");
@@ -1368,14 +1386,40 @@ TimeStepSettings time_step_settings(const Scene& s) {
     return t;
 }
 
+std::string single_precision_obstacle(const Scene& s, const std::string& kernel) {
+    if (s.solver.name != "wcsph")
+        return fmt::format("the single-precision passes are wcsph's; the {} solver computes in "
+                           "double",
+                           s.solver.name);
+    if (kernel == "seed")
+        return "the seed kernel's spiky gradient needs the double passes' rule for coincident "
+               "particles; use solver.kernel cubic_spline or wendland_c2";
+    if (s.solver.neighbour_search != "sorted_grid")
+        return fmt::format("the single-precision passes run on the sorted grid's cells; "
+                           "solver.neighbour_search {} lists neighbours for the double passes",
+                           s.solver.neighbour_search);
+    if (s.effects.viscosity && s.effects.viscosity->model != "morris")
+        return fmt::format("effects.viscosity model {} reads neighbour lists, which the "
+                           "single-precision passes do not build",
+                           s.effects.viscosity->model);
+    if (s.effects.xsph)
+        return "effects.xsph reads neighbour lists, which the single-precision passes do not "
+               "build";
+    if (s.effects.surface_tension)
+        return "effects.surface_tension reads neighbour lists, which the single-precision "
+               "passes do not build";
+    return {};
+}
+
 Derived derive(const Scene& s) {
     Derived d;
     const int dim = s.dimension;
     const double ratio = s.fluid.smoothing_ratio.value_or(default_smoothing_ratio(dim));
     d.h = s.fluid.smoothing_length.value_or(ratio * s.fluid.spacing);
-    d.kernel = s.solver.kernel != "auto" ? s.solver.kernel
-               : s.solver.name == "seed" ? "seed"
-                                         : "cubic_spline";
+    d.kernel = derive_kernel(s);
+    d.precision = s.solver.precision != "auto"                      ? s.solver.precision
+                  : single_precision_obstacle(s, d.kernel).empty() ? "single"
+                                                                    : "double";
     d.walls = s.solver.walls != "auto"  ? s.solver.walls
               : s.solver.name == "seed" ? "reflect"
                                         : "particles";
@@ -1565,7 +1609,8 @@ json to_json(const Scene& s) {
           {"max_iterations", s.solver.max_iterations},
           {"warm_start", s.solver.warm_start},
           {"neighbour_search", s.solver.neighbour_search},
-          {"reorder_every", s.solver.reorder_every}}},
+          {"reorder_every", s.solver.reorder_every},
+          {"precision", d.precision}}},
         {"watchdog",
          {{"retries", s.watchdog.retries},
           {"max_density_ratio", s.watchdog.max_density_ratio},

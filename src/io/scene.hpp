@@ -110,6 +110,9 @@ struct Scene {
         std::string neighbour_search = "sorted_grid";
         // Steps between spatial sorts of the particle arrays by cell; 0: never.
         int reorder_every = 20;
+        // auto | single | double: the arithmetic of wcsph's density and
+        // pressure passes (sph/single_precision/cell_passes.hpp).
+        std::string precision = "auto";
     } solver;
 
     // The per-step checks (sph/watchdog.hpp).
@@ -169,6 +172,7 @@ struct Derived {
     bool fixed_dt = false;
     std::string kernel;     // solver.kernel resolved
     std::string walls;      // solver.walls resolved
+    std::string precision;  // solver.precision resolved: single | double
     double sound_speed = 0; // m/s, sqrt(K / rho0)
     double max_speed = 0;   // m/s, watchdog.max_speed resolved
     // Lattice sites of the blocks; the sites in or beside obstacles are left
@@ -203,6 +207,9 @@ std::filesystem::path output_folder(const Scene& scene);
 std::vector<KeyDoc> scene_keys();
 
 Derived derive(const Scene& scene);
+// Why solver.precision "single" cannot run this scene (the resolved kernel
+// given); empty when it can. "auto" is single exactly when this is empty.
+std::string single_precision_obstacle(const Scene& scene, const std::string& kernel);
 // solver.kernel's name (resolved, not "auto") as the core's enum.
 KernelKind kernel_kind(const std::string& name);
 // The solver.dt / cfl / dt_min / dt_max keys as the core's settings.

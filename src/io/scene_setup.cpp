@@ -72,6 +72,8 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                   scene.watchdog.max_displacement, derived.max_speed,
                   !scene.watchdog.max_speed.has_value()};
     p.reorder_every = scene.solver.reorder_every;
+    p.precision =
+        derived.precision == "single" ? Precision::single : Precision::double_precision;
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     p.obstacles = make_obstacles<D>(scene);
     p.paddles = make_paddles<D>(scene);

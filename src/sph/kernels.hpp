@@ -18,20 +18,26 @@
 
 #include "sph/vec.hpp"
 
+#include <concepts>
 #include <numbers>
 
 namespace sph {
 
 namespace detail {
 constexpr Real pi = std::numbers::pi_v<Real>;
-inline Real cube(Real x) {
+template <std::floating_point T>
+T cube(T x) {
     return x * x * x;
 }
-inline Real pow_int(Real x, int n) {
-    Real y = 1;
-    for (int i = 0; i < n; ++i)
-        y *= x;
-    return y;
+// x^N as the loop y = 1; y *= x (N times) would give it, with the exponent
+// fixed at compile time: straight-line code, which a vectorised loop may
+// call (a loop inside keeps the caller's loop scalar).
+template <int N, std::floating_point T>
+T pow_int(T x) {
+    if constexpr (N == 0)
+        return 1;
+    else
+        return pow_int<N - 1>(x) * x;
 }
 } // namespace detail
 
@@ -46,8 +52,8 @@ struct Poly6 {
     Real h, h2, norm;
     explicit Poly6(Real support)
         : h(support), h2(support * support),
-          norm(D == 2 ? 4 / (detail::pi * detail::pow_int(support, 8))
-                      : 315 / (64 * detail::pi * detail::pow_int(support, 9))) {}
+          norm(D == 2 ? 4 / (detail::pi * detail::pow_int<8>(support))
+                      : 315 / (64 * detail::pi * detail::pow_int<9>(support))) {}
     // Value from the squared distance: no square root in the density loop.
     Real W_r2(Real r2) const { return r2 < h2 ? norm * detail::cube(h2 - r2) : 0; }
     Real W(Real r) const { return W_r2(r * r); }
@@ -66,8 +72,8 @@ struct Spiky {
     static constexpr bool smooth_at_origin = false;
     Real h, norm;
     explicit Spiky(Real support)
-        : h(support), norm(D == 2 ? 10 / (detail::pi * detail::pow_int(support, 5))
-                                  : 15 / (detail::pi * detail::pow_int(support, 6))) {}
+        : h(support), norm(D == 2 ? 10 / (detail::pi * detail::pow_int<5>(support))
+                                  : 15 / (detail::pi * detail::pow_int<6>(support))) {}
     Real W(Real r) const { return r < h ? norm * detail::cube(h - r) : 0; }
     Real dW(Real r) const { return r < h ? -3 * norm * (h - r) * (h - r) : 0; }
     Real dW_over_r(Real r) const { return dW(r) / r; }
@@ -84,8 +90,8 @@ template <int D>
 struct ViscosityLaplacian {
     Real h, norm;
     explicit ViscosityLaplacian(Real support)
-        : h(support), norm(D == 2 ? 40 / (detail::pi * detail::pow_int(support, 5))
-                                  : 45 / (detail::pi * detail::pow_int(support, 6))) {}
+        : h(support), norm(D == 2 ? 40 / (detail::pi * detail::pow_int<5>(support))
+                                  : 45 / (detail::pi * detail::pow_int<6>(support))) {}
     Real laplacian(Real r) const { return r < h ? norm * (h - r) : 0; }
 };
 
@@ -93,65 +99,72 @@ struct ViscosityLaplacian {
 // (as in SPlisHSPlasH's CubicKernel): q = r / h,
 //   W = C (6 (q^3 - q^2) + 1)  for q <= 1/2,   W = C 2 (1 - q)^3  for q <= 1,
 // 2D: C = 40 / (7 pi h^2); 3D: C = 8 / (pi h^3).
-template <int D>
+// T = float is the kernel of the single-precision passes
+// (sph/single_precision/): the same formulas, with constants rounded from
+// double. (Converting double members inside a loop keeps GCC from
+// vectorising it, so the float kernel holds float constants.)
+template <int D, std::floating_point T = Real>
 struct CubicSpline {
     static constexpr bool smooth_at_origin = true;
-    Real h, inverse_h, norm;
+    using Single = CubicSpline<D, float>;
+    T h, inverse_h, norm;
     explicit CubicSpline(Real support)
-        : h(support), inverse_h(1 / support),
-          norm(D == 2 ? 40 / (7 * detail::pi * support * support)
-                      : 8 / (detail::pi * detail::cube(support))) {}
-    Real W(Real r) const {
-        const Real q = r * inverse_h;
+        : h(T(support)), inverse_h(T(1 / support)),
+          norm(T(D == 2 ? 40 / (7 * detail::pi * support * support)
+                        : 8 / (detail::pi * detail::cube(support)))) {}
+    T W(T r) const {
+        const T q = r * inverse_h;
         if (q >= 1)
             return 0;
-        if (q <= 0.5)
+        if (q <= T(0.5))
             return norm * (6 * (q * q * q - q * q) + 1);
         return norm * 2 * detail::cube(1 - q);
     }
-    Real dW(Real r) const {
-        const Real q = r * inverse_h;
+    T dW(T r) const {
+        const T q = r * inverse_h;
         if (q >= 1)
             return 0;
-        if (q <= 0.5)
+        if (q <= T(0.5))
             return norm * 6 * (3 * q * q - 2 * q) * inverse_h;
         return -norm * 6 * (1 - q) * (1 - q) * inverse_h;
     }
     // q / r = 1 / h: the inner part is 6 (3 q - 2) / h^2, the outer part
     // still needs 1 / r.
-    Real dW_over_r(Real r) const {
-        const Real q = r * inverse_h;
+    T dW_over_r(T r) const {
+        const T q = r * inverse_h;
         if (q >= 1)
             return 0;
-        if (q <= 0.5)
+        if (q <= T(0.5))
             return norm * 6 * (3 * q - 2) * inverse_h * inverse_h;
         return dW(r) / r;
     }
-    Vec<D> grad(const Vec<D>& x, Real r) const { return dW_over_r(r) * x; }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
 };
 
 // Wendland C2 (Wendland 1995; Dehnen & Aly 2012, table 1), support radius h:
 //   W = C (1 - q)^4 (1 + 4 q),   2D: C = 7 / (pi h^2);  3D: C = 21 / (2 pi h^3).
-template <int D>
+// T = float: as for CubicSpline.
+template <int D, std::floating_point T = Real>
 struct WendlandC2 {
     static constexpr bool smooth_at_origin = true;
-    Real h, inverse_h, norm;
+    using Single = WendlandC2<D, float>;
+    T h, inverse_h, norm;
     explicit WendlandC2(Real support)
-        : h(support), inverse_h(1 / support),
-          norm(D == 2 ? 7 / (detail::pi * support * support)
-                      : 21 / (2 * detail::pi * detail::cube(support))) {}
-    Real W(Real r) const {
-        const Real q = r * inverse_h;
-        return q < 1 ? norm * detail::pow_int(1 - q, 4) * (1 + 4 * q) : 0;
+        : h(T(support)), inverse_h(T(1 / support)),
+          norm(T(D == 2 ? 7 / (detail::pi * support * support)
+                        : 21 / (2 * detail::pi * detail::cube(support)))) {}
+    T W(T r) const {
+        const T q = r * inverse_h;
+        return q < 1 ? norm * detail::pow_int<4>(1 - q) * (1 + 4 * q) : 0;
     }
     // d/dr of (1-q)^4 (1+4q) = -20 q (1-q)^3 / h
-    Real dW(Real r) const { return r * dW_over_r(r); }
+    T dW(T r) const { return r * dW_over_r(r); }
     // q / r = 1 / h: no division at all.
-    Real dW_over_r(Real r) const {
-        const Real q = r * inverse_h;
+    T dW_over_r(T r) const {
+        const T q = r * inverse_h;
         return q < 1 ? -20 * norm * inverse_h * inverse_h * detail::cube(1 - q) : 0;
     }
-    Vec<D> grad(const Vec<D>& x, Real r) const { return dW_over_r(r) * x; }
+    Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
 };
 
 // The seed's pair of kernels as one kernel: poly6 values for the density,

@@ -15,6 +15,10 @@ namespace sph {
 
 enum class Integrator { symplectic_euler, verlet };
 
+// The arithmetic of wcsph's density and pressure passes: float over grid
+// cells (sph/single_precision/cell_passes.hpp) or double over neighbour lists.
+enum class Precision { single, double_precision };
+
 // How the walls of the domain act on the fluid.
 enum class WallModel {
     reflect,  // the seed's: put back inside and reflect the velocity
@@ -72,6 +76,7 @@ struct Params {
     // Steps between spatial sorts of the particle arrays (by cell, along the
     // Morton curve), which keep neighbours near in memory; 0: never.
     int reorder_every = 0;
+    Precision precision = Precision::double_precision;
 
     Real sound_speed() const { return std::sqrt(bulk_modulus / rest_density); }
 };

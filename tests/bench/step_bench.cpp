@@ -104,10 +104,14 @@ struct Case {
     int steps = 0;
     int reorder = 0; // solver.reorder_every
     bool shuffled = false;
+    std::string precision = "auto"; // solver.precision
 
-    // The search's name, with the reordering when there is one.
-    std::string search_label() const {
-        return reorder > 0 ? fmt::format("{}+reorder{}", search, reorder) : search;
+    // The search's name, with the reordering when there is one, and
+    // "+single" when the passes run in single precision (cells, no lists).
+    std::string search_label(const std::string& resolved_precision) const {
+        const std::string label =
+            reorder > 0 ? fmt::format("{}+reorder{}", search, reorder) : search;
+        return resolved_precision == "single" ? label + "+single" : label;
     }
 };
 
@@ -146,6 +150,7 @@ std::vector<Override> overrides(const Case& c) {
         {"solver.dt", num(dt)},
         {"solver.neighbour_search", c.search},
         {"solver.reorder_every", std::to_string(c.reorder)},
+        {"solver.precision", c.precision},
         {"fluid.spacing", num(spacing)},
         {"domain.min", origin},
         {"domain.max", fmt::format("[{:.17g}, {:.17g}{}]", 3 * a, 2.4 * a, depth)},
@@ -214,6 +219,8 @@ Result run(const Scene& scene, int threads, int steps, bool shuffled) {
     }
     std::sort(r.stages.begin(), r.stages.end(),
               [](const Stage& a, const Stage& b) { return a.seconds > b.seconds; });
+    // Single-precision steps build no lists: update_fields (untimed) does.
+    sim.update_fields();
     const NeighbourList& list = sim.neighbours();
     r.neighbours = list.particle_count() ? double(list.pair_count()) / list.particle_count() : 0;
     // The state's arrays (with the watchdog's copy of them) and the fluid
@@ -285,7 +292,8 @@ int usage() {
     fmt::print(stderr,
                "usage: sphclip_bench_step [--quick|--tiny] [--sizes N,N] [--solvers "
                "seed,wcsph,dfsph] [--dims 2,3] [--threads 1,2] [--steps N] [--search "
-               "hash,sorted_grid] [--reorder 0,20] [--shuffled] [--no-dsph] [--csv FILE]\n");
+               "hash,sorted_grid] [--reorder 0,20] [--precision auto,single,double] [--shuffled] "
+               "[--no-dsph] [--csv FILE]\n");
     return 2;
 }
 
@@ -299,6 +307,7 @@ int main(int argc, char** argv) {
     std::vector<int> dims{2, 3}, thread_counts{1, 2};
     std::vector<std::string> searches{"sorted_grid", "hash"};
     std::vector<int> reorders{0, Scene{}.solver.reorder_every};
+    std::vector<std::string> precisions{"auto"};
     std::FILE* csv = nullptr;
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
@@ -331,6 +340,8 @@ int main(int argc, char** argv) {
             reorders.clear();
             for (const auto& s : split(argv[++k]))
                 reorders.push_back(std::atoi(s.c_str()));
+        } else if (arg == "--precision" && has_value) {
+            precisions = split(argv[++k]);
         } else if (arg == "--csv" && has_value) {
             csv = std::fopen(argv[++k], "w");
             if (!csv)
@@ -355,17 +366,20 @@ int main(int argc, char** argv) {
         return steps > 0 ? steps : n <= 20000 ? 50 : n <= 200000 ? 10 : 3;
     };
     std::vector<Case> cases;
-    for (const auto& search : searches)
-        for (int reorder : reorders)
-            for (const auto& solver : solvers)
-                for (int d : dims)
-                    for (std::size_t n : sizes)
-                        cases.push_back({solver, d, n, search, false, steps_for(n), reorder});
-    if (dsph)
-        for (const auto& s : searches)
+    for (const auto& precision : precisions)
+        for (const auto& search : searches)
             for (int reorder : reorders)
-                cases.push_back(
-                    {"wcsph", 2, quick ? 300u : 21000u, s, true, steps > 0 ? steps : 200, reorder});
+                for (const auto& solver : solvers)
+                    for (int d : dims)
+                        for (std::size_t n : sizes)
+                            cases.push_back({solver, d, n, search, false, steps_for(n), reorder,
+                                             false, precision});
+    if (dsph)
+        for (const auto& precision : precisions)
+            for (const auto& s : searches)
+                for (int reorder : reorders)
+                    cases.push_back({"wcsph", 2, quick ? 300u : 21000u, s, true,
+                                     steps > 0 ? steps : 200, reorder, false, precision});
     if (shuffled)
         for (std::size_t k = 0, count = cases.size(); k < count; ++k) {
             cases.push_back(cases[k]);
@@ -394,6 +408,7 @@ int main(int argc, char** argv) {
     std::vector<double> dsph_rates;
     for (const auto& c : cases) {
         const Scene scene = default_scene(overrides(c));
+        const std::string search_label = c.search_label(derive(scene).precision);
         std::uint64_t first_hash = 0;
         bool have_first = false;
         for (int threads : thread_counts) {
@@ -412,7 +427,7 @@ int main(int argc, char** argv) {
                                                                            : "NO";
             fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {:.2f} | {:.3f} | {:.0f} | "
                        "{:.1f} | {:.0f}, {:.0f} | {:.0f} | {} | {} |\n",
-                       label, c.solver, c.dimension, c.search_label(), r.particles, r.boundary,
+                       label, c.solver, c.dimension, search_label, r.particles, r.boundary,
                        threads, r.steps, r.wall_s, r.rate() * 1e-6, 1e9 / r.rate(), r.neighbours,
                        r.array_bytes, r.rss_bytes, r.peak_rss / 1048576, same_text,
                        stage_summary(r, 4));
@@ -425,7 +440,7 @@ int main(int argc, char** argv) {
                 fmt::print(csv,
                            "{},{},{},{},{},{},{},{},{},{:.3f},{:.4f},{:.0f},{:.1f},{:.2f},{:.0f},"
                            "{:.0f},{:.1f},{:016x},{},\"{}\"\n",
-                           label, c.solver, c.dimension, c.search_label(), r.particles, r.boundary,
+                           label, c.solver, c.dimension, search_label, r.particles, r.boundary,
                            threads, r.steps, r.retries, r.setup_s, r.wall_s, r.rate(),
                            1e9 / r.rate(), r.neighbours, r.array_bytes, r.rss_bytes,
                            r.peak_rss / 1048576, r.hash, same_text, stage_csv(r));

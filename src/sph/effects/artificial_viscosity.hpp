@@ -14,22 +14,27 @@
 #include "sph/pair_direction.hpp"
 
 #include <cmath>
+#include <concepts>
 
 namespace sph {
 
 // Pi_ij of one pair, from v_ij . x_ij, rho_i + rho_j and r^2. Receding pairs
 // (v . x >= 0) give 0: a select, not a branch, and one division (the rest of
 // Pi grad W is products). At r = 0, v . x is 0 too.
-struct MonaghanViscosity {
-    Real nu_scale; // 2 alpha h c
-    Real eps;      // 0.01 h^2
+template <std::floating_point T>
+struct MonaghanTerm {
+    T nu_scale; // 2 alpha h c
+    T eps;      // 0.01 h^2
 
-    Real operator()(Real rate, Real density_sum, Real r2) const {
-        const Real v_dot_x = rate < 0 ? rate : 0; // not std::min: its reference
-                                                  // keeps the loop scalar
+    T operator()(T rate, T density_sum, T r2) const {
+        const T v_dot_x = rate < 0 ? rate : 0; // not std::min: its reference
+                                               // keeps the loop scalar
         return -nu_scale * v_dot_x / (density_sum * (r2 + eps));
     }
+    // The float term of the single-precision passes (sph/single_precision/).
+    MonaghanTerm<float> single() const { return {float(nu_scale), float(eps)}; }
 };
+using MonaghanViscosity = MonaghanTerm<Real>;
 
 template <int D>
 class ArtificialViscosity final : public Effect<D> {

@@ -39,6 +39,15 @@ struct MorrisViscosity {
     Real wall(const Kernel& kernel, Real volume, Real r, Real r2) const {
         return volume * r * kernel.dW(r) / (r2 + eps);
     }
+    // Either, in float, from the neighbour's volume (m / rho_j, or V_b) and
+    // x . grad W: the single-precision passes' term (sph/single_precision/).
+    struct Single {
+        float eps, two_mu;
+        float operator()(float volume, float x_dot_grad, float r2) const {
+            return volume * x_dot_grad / (r2 + eps);
+        }
+    };
+    Single single() const { return {float(eps), float(two_mu)}; }
 };
 
 template <int D>

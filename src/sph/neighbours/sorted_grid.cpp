@@ -334,24 +334,13 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
 }
 
 template <int D>
-std::size_t SortedGrid<D>::gather_candidates(std::uint32_t first, std::uint32_t last, Real r2,
-                                             Scratch& s) const {
+int SortedGrid<D>::neighbour_runs(std::size_t cell, NeighbourRuns& runs) const {
     constexpr int neighbour_cells = D == 2 ? 9 : 27;
-    Vec<D> x, lo(std::numeric_limits<Real>::max()), hi(std::numeric_limits<Real>::lowest());
+    const std::uint32_t first = cell_start_[cell];
+    Vec<D> x;
     for (int a = 0; a < D; ++a)
         x[a] = sorted_x_[a][first];
     const Coord centre = cell_of(x);
-    // The box around the cell's particles; a NaN or infinity has no neighbour
-    // to look for.
-    for (std::uint32_t k = first; k < last; ++k)
-        for (int a = 0; a < D; ++a) {
-            const Real v = sorted_x_[a][k];
-            if (std::abs(v) <= std::numeric_limits<Real>::max()) {
-                lo[a] = std::min(lo[a], v);
-                hi[a] = std::max(hi[a], v);
-            }
-        }
-
     // The 3^D surrounding cells' runs, by position in the sorted arrays.
     std::array<std::array<std::uint64_t, 3>, D> part{};
     std::array<int, D> low, high;
@@ -361,9 +350,7 @@ std::size_t SortedGrid<D>::gather_candidates(std::uint32_t first, std::uint32_t 
         for (int o = low[a]; o <= high[a]; ++o)
             part[a][o] = spread(a, centre[a] + o - 1);
     }
-    std::array<Range, neighbour_cells> ranges;
-    int range_count = 0;
-    std::size_t total = 0;
+    int count = 0;
     for (int k = 0; k < neighbour_cells; ++k) {
         std::uint64_t key = 0;
         bool inside = true;
@@ -378,13 +365,35 @@ std::size_t SortedGrid<D>::gather_candidates(std::uint32_t first, std::uint32_t 
             continue;
         const Range r = cell_range(key);
         if (r.end > r.begin) {
-            int at = range_count++;
-            for (; at > 0 && ranges[at - 1].begin > r.begin; --at)
-                ranges[at] = ranges[at - 1];
-            ranges[at] = r;
-            total += r.end - r.begin;
+            int at = count++;
+            for (; at > 0 && runs[at - 1].begin > r.begin; --at)
+                runs[at] = runs[at - 1];
+            runs[at] = r;
         }
     }
+    return count;
+}
+
+template <int D>
+std::size_t SortedGrid<D>::gather_candidates(std::size_t cell, Real r2, Scratch& s) const {
+    const std::uint32_t first = cell_start_[cell], last = cell_start_[cell + 1];
+    Vec<D> lo(std::numeric_limits<Real>::max()), hi(std::numeric_limits<Real>::lowest());
+    // The box around the cell's particles; a NaN or infinity has no neighbour
+    // to look for.
+    for (std::uint32_t k = first; k < last; ++k)
+        for (int a = 0; a < D; ++a) {
+            const Real v = sorted_x_[a][k];
+            if (std::abs(v) <= std::numeric_limits<Real>::max()) {
+                lo[a] = std::min(lo[a], v);
+                hi[a] = std::max(hi[a], v);
+            }
+        }
+
+    NeighbourRuns ranges;
+    const int range_count = neighbour_runs(cell, ranges);
+    std::size_t total = 0;
+    for (int k = 0; k < range_count; ++k)
+        total += ranges[k].end - ranges[k].begin;
     if (s.keyed.size() < total) {
         s.keyed.resize(total);
         for (int a = 0; a < D; ++a)
@@ -448,7 +457,7 @@ void SortedGrid<D>::list_neighbours(Real radius, NeighbourList& out) {
         for (std::size_t c = 0; c < cells; ++c) {
             const std::uint32_t first = cell_start_[c], last = cell_start_[c + 1];
             // Gathered once per cell, so each particle runs one long loop.
-            const std::size_t candidates = gather_candidates(first, last, r2, s);
+            const std::size_t candidates = gather_candidates(c, r2, s);
             for (std::uint32_t k = first; k < last; ++k) {
                 if constexpr (D == 2)
                     squared_distances(candidates, s.x[0].data(), s.x[1].data(), sorted_x_[0][k],
@@ -517,6 +526,7 @@ std::span<const std::uint32_t> SortedGrid<D>::cell_order(std::span<const Vec<D>>
     if (positions.empty() || !(radius > 0)) {
         order_.resize(positions.size());
         std::iota(order_.begin(), order_.end(), 0u);
+        cell_start_.assign(1, 0);
     } else {
         sort_into_cells(positions, radius);
     }

@@ -38,6 +38,23 @@ class SortedGrid final : public NeighbourSearch<D> {
     std::span<const std::uint32_t> cell_order(std::span<const Vec<D>> positions,
                                               Real radius) override;
 
+    // The occupied cells of the last find or cell_order, along the Morton
+    // curve, for passes that work a cell at a time
+    // (sph/neighbours/cell_neighbourhoods.hpp). A cell holds the particles
+    // order()[cell_begin(c) .. cell_begin(c + 1)), by ascending index.
+    std::size_t cell_count() const { return cell_start_.size() - 1; }
+    std::uint32_t cell_begin(std::size_t c) const { return cell_start_[c]; }
+    // A run of sorted particles: [begin, end).
+    struct Range {
+        std::uint32_t begin, end;
+    };
+    // The runs of the (up to 3^D) occupied cells around cell c, c included,
+    // by ascending position; returns how many.
+    using NeighbourRuns = std::array<Range, D == 2 ? 9 : 27>;
+    int neighbour_runs(std::size_t cell, NeighbourRuns& runs) const;
+    // The positions in cell order, one array per axis.
+    std::span<const Real> sorted_positions(int axis) const { return sorted_x_[axis]; }
+
     // Whether the last find hashed the occupied cells (a sparse or huge box)
     // instead of indexing a table by Morton code.
     bool hashed_cells() const { return hashed_; }
@@ -51,10 +68,6 @@ class SortedGrid final : public NeighbourSearch<D> {
 
   private:
     using Coord = std::array<std::uint32_t, D>;
-    // A run of sorted particles: [begin, end).
-    struct Range {
-        std::uint32_t begin, end;
-    };
     // Per-thread buffers, kept between calls.
     struct Scratch {
         std::vector<std::uint64_t> keyed;   // (index << 32 | sorted position) per candidate
@@ -73,10 +86,9 @@ class SortedGrid final : public NeighbourSearch<D> {
     void radix_sort(int key_bits);
     void hash_cells();
     Range cell_range(std::uint64_t key) const;
-    // Gathers into s the candidates of the particles sorted into [first, last),
-    // ordered by index; returns how many.
-    std::size_t gather_candidates(std::uint32_t first, std::uint32_t last, Real r2,
-                                  Scratch& s) const;
+    // Gathers into s the candidates of the particles of one cell, ordered by
+    // index; returns how many.
+    std::size_t gather_candidates(std::size_t cell, Real r2, Scratch& s) const;
     void list_neighbours(Real radius, NeighbourList& out);
 
     // The grid of the last call.

@@ -5,16 +5,38 @@
 #include "sph/solvers/density_with_walls.hpp"
 
 #include <array>
+#include <stdexcept>
+#include <type_traits>
 
 namespace sph {
 
 namespace {
 
-// Density by summation over fluid and wall particles, then Tait's pressure.
+// The grid cells, then the density over them in float.
+template <int D, class Kernel>
+void cell_density(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
+                  CellPasses<D>& cells, State<D>& state) {
+    if constexpr (Kernel::smooth_at_origin) {
+        {
+            auto timed = context.time("neighbour search");
+            cells.find_cells(state.position, context.boundary, params.h);
+        }
+        auto timed = context.time("density");
+        cells.density(params, kernel, context.boundary, state);
+    } else {
+        throw std::logic_error("wcsph: single precision needs a smooth kernel");
+    }
+}
+
+// Density by summation over fluid and wall particles, then Tait's pressure:
+// in double on neighbour lists, or in float on grid cells.
 template <int D, class Kernel>
 void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
-                          State<D>& state) {
-    find_neighbours_and_density(params, kernel, context, state);
+                          CellPasses<D>& cells, State<D>& state) {
+    if (params.precision == Precision::single)
+        cell_density(params, kernel, context, cells, state);
+    else
+        find_neighbours_and_density(params, kernel, context, state);
     auto timed = context.time("pressure");
     compute_pressure_tait(params, state);
 }
@@ -36,15 +58,24 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
                                       laminar ? &morris : nullptr};
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
-        density_and_pressure(params, kernel, context, state);
+        density_and_pressure(params, kernel, context, cells_, state);
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij) grad W,
         // walls included, and Morris's viscosity.
         auto timed = context.time("pressure");
+        if constexpr (std::decay_t<decltype(kernel)>::smooth_at_origin) {
+            if (params.precision == Precision::single) {
+                cells_.pressure_acceleration(params, kernel, context.boundary, viscosities, state);
+                return;
+            }
+        } else if (params.precision == Precision::single) {
+            throw std::logic_error("wcsph: single precision needs a smooth kernel");
+        }
         compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
                                       context.boundary_neighbours, viscosities, pressure_term_,
                                       state);
     });
-    // 3. The other effects the scene names: gravity, XSPH, ...
+    // 3. The other effects the scene names: gravity, ... (in single
+    // precision none that reads neighbour lists: the scene checks it).
     const std::array<const Effect<D>*, 2> merged{artificial, laminar};
     context.apply_effects(params, state, merged);
 }
@@ -54,10 +85,16 @@ void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
                                    StepContext<D>& context) {
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         if (context.output_pressure)
-            density_and_pressure(params, kernel, context, state);
+            density_and_pressure(params, kernel, context, cells_, state);
+        else if (params.precision == Precision::single)
+            cell_density(params, kernel, context, cells_, state);
         else // the next step computes its own pressure
             find_neighbours_and_density(params, kernel, context, state);
     });
+    // The outputs read the neighbour lists (3D culling of buried particles),
+    // which single-precision steps do not build.
+    if (params.precision == Precision::single)
+        context.find_neighbours(state.position, params.h);
 }
 
 template class WcsphSolver<2>;

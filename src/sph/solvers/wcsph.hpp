@@ -6,6 +6,7 @@
 // sets the sound speed c = sqrt(K / rho0); density errors scale like (v / c)^2.
 
 #include "sph/equation_of_state.hpp"
+#include "sph/single_precision/cell_passes.hpp"
 #include "sph/solvers/explicit_solver.hpp"
 
 #include <vector>
@@ -34,6 +35,7 @@ class WcsphSolver final : public ExplicitSolver<D> {
   private:
     KernelKind kernel_;
     std::vector<Real> pressure_term_; // p / rho^2 per particle, scratch
+    CellPasses<D> cells_;             // the single-precision passes and their buffers
 };
 
 } // namespace sph

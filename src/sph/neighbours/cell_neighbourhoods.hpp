@@ -1,0 +1,68 @@
+#pragma once
+// The fluid's grid cells and, for each, the runs of particles in the 3^D
+// cells around it: what a pass that works a cell at a time reads instead of
+// neighbour lists (the single-precision passes, sph/single_precision/).
+//
+// Fluid and wall particles are sorted together into one sorted grid
+// (sph/neighbours/sorted_grid.hpp), so a cell's neighbourhood holds both:
+// sorted entry k is fluid particle order()[k] when that is below
+// fluid_count(), else wall particle order()[k] - fluid_count(). A cell lists
+// its particles by ascending index, so its fluid ones come first.
+//
+// No distance is tested here and nothing is listed per particle: the pass
+// gathers a cell's neighbourhood into contiguous buffers once and runs every
+// particle of the cell over all of it, a lane per candidate, the candidates
+// farther than the radius adding 0. That trades about three times more
+// pair evaluations for loops without gathers and no lists to write.
+
+#include "sph/neighbours/sorted_grid.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace sph {
+
+template <int D>
+class CellNeighbourhoods {
+  public:
+    using Range = typename SortedGrid<D>::Range;
+
+    // Sorts the fluid and wall particles into cells of size `radius` (> 0).
+    void build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls, Real radius);
+
+    std::size_t fluid_count() const { return fluid_count_; }
+    // The particle (fluid, then wall) at each sorted position.
+    std::span<const std::uint32_t> order() const { return grid_.order(); }
+    // Positions in sorted order, one array per axis.
+    std::span<const Real> sorted_positions(int axis) const { return grid_.sorted_positions(axis); }
+
+    // Cells holding fluid, along the Morton curve.
+    struct Cell {
+        std::uint32_t begin, fluid_end; // its fluid particles, sorted positions
+        std::uint32_t runs_begin, runs_end; // into runs()
+        std::uint32_t candidates;           // particles in its runs
+    };
+    std::span<const Cell> cells() const { return cells_; }
+    std::span<const Range> runs(const Cell& cell) const {
+        return {runs_.data() + cell.runs_begin, runs_.data() + cell.runs_end};
+    }
+    // The most candidates of any cell: the size of a pass's buffers.
+    std::size_t max_candidates() const { return max_candidates_; }
+    // Sorted entries (fluid and walls), and candidates summed over the cells.
+    std::size_t sorted_count() const { return grid_.order().size(); }
+    std::size_t candidate_count() const { return candidate_count_; }
+
+  private:
+    SortedGrid<D> grid_;
+    std::vector<Vec<D>> positions_; // fluid then walls
+    std::size_t fluid_count_ = 0;
+    std::vector<typename SortedGrid<D>::NeighbourRuns> grid_runs_; // per grid cell
+    std::vector<std::uint8_t> run_count_;                          // per grid cell
+    std::vector<std::uint32_t> fluid_end_;                         // per grid cell
+    std::vector<Cell> cells_;
+    std::vector<Range> runs_;
+    std::size_t max_candidates_ = 0, candidate_count_ = 0;
+};
+
+} // namespace sph

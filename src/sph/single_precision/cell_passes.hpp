@@ -1,0 +1,336 @@
+#pragma once
+// The weakly compressible solver's density and pressure passes in single
+// precision, a grid cell at a time: `solver.precision` "single" (README,
+// "Single precision").
+//
+// Why cells and not neighbour lists: a list costs a gather per pair in each
+// pass, and writing it costs more than both passes' arithmetic. Here a cell's
+// neighbourhood (the particles of the 3^D cells around it, fluid and wall,
+// sph/neighbours/cell_neighbourhoods.hpp) is copied once per pass into
+// contiguous float buffers, and every particle of the cell runs one loop over
+// all of it, 16 lanes at a time with AVX-512 (8 with AVX2). About a third of
+// the candidates are within the support; the others add 0. The same grid
+// cells replace the neighbour search.
+//
+// Accuracy: positions are copied as offsets from the cell's first particle,
+// computed in double, so a domain far from the origin loses nothing; an
+// offset is at most two cells long and keeps 24 bits. The per-particle sums
+// are taken in float and stored in double. Each particle's sum runs over the
+// candidates in the cells' sorted order, so the result is the same with any
+// thread count. The float form of each formula is the double one's
+// (kernels, MonaghanViscosity, MorrisViscosity), with the same equations as
+// sph/density.hpp and sph/pressure_acceleration.hpp:
+//   rho_i = sum_j m_j W_ij, walls included with m_b = rho0 V_b
+//   a_i = -sum_j m_j (p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij) grad W_ij
+//         + (2 mu / rho_i) sum_j V_j (x_ij . grad W_ij) / (r^2 + eps) v_ij
+// where a wall particle mirrors the fluid particle's pressure and density
+// (p_b = p_i, rho_b = rho_i) and has volume V_b, a fluid one V_j = m / rho_j.
+// The particle itself is among its candidates: it adds m W(0) to its density
+// and, x_ii being 0, nothing to its acceleration. That needs a kernel whose
+// gradient is finite at r = 0 (smooth_at_origin: not the seed's spiky one).
+
+#include "sph/boundary_particles.hpp"
+#include "sph/headroom.hpp"
+#include "sph/neighbours/cell_neighbourhoods.hpp"
+#include "sph/neighbours/neighbour_list.hpp"
+#include "sph/pressure_acceleration.hpp"
+
+#include <array>
+#include <cmath>
+#include <omp.h>
+#include <vector>
+
+namespace sph {
+
+// Floats in one vector register of the target: the cell loops' width.
+inline constexpr std::uint32_t float_lanes = 2 * simd_lanes;
+
+template <int D>
+class CellPasses {
+  public:
+    // The cells at these positions (fluid and walls): the step's neighbour
+    // search. `boundary` may be null.
+    void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
+                    Real radius) {
+        cells_.build(fluid, boundary ? boundary->positions() : std::span<const Vec<D>>{}, radius);
+    }
+    const CellNeighbourhoods<D>& cells() const { return cells_; }
+
+    // state.density = sum_j m_j W_ij over fluid and wall particles.
+    template <class Kernel>
+    void density(const Params<D>& params, const Kernel& double_kernel,
+                 const BoundaryParticles<D>* boundary, State<D>& state) {
+        const typename Kernel::Single kernel(double_kernel.h);
+        const auto order = cells_.order();
+        const std::size_t n = cells_.fluid_count(), total = cells_.sorted_count();
+        resize_with_headroom(sorted_.mass, total);
+#pragma omp parallel for schedule(static)
+        for (std::size_t k = 0; k < total; ++k) {
+            const std::uint32_t j = order[k];
+            sorted_.mass[k] = float(j < n ? params.mass
+                                          : params.rest_density * boundary->volumes()[j - n]);
+        }
+        prepare_buffers();
+        const auto cells = cells_.cells();
+#pragma omp parallel for schedule(dynamic, 16)
+        for (std::size_t c = 0; c < cells.size(); ++c) {
+            Buffers& b = buffers_[omp_get_thread_num()];
+            const auto& cell = cells[c];
+            const Vec<D> reference = gather_positions(cell, b);
+            gather(cell, sorted_.mass, b.mass, 0.f, b.padded);
+            const Lanes l = b.lanes();
+            for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
+                const FVec x_i = offset(k, reference);
+                const float sum = sum_candidates<float>(l.padded, [=](std::size_t m) {
+                    const FVec x_ij = x_i - l.position(m);
+                    const float r2 = glm::dot(x_ij, x_ij);
+                    return l.mass[m] * kernel.W(std::sqrt(r2));
+                });
+                state.density[order[k]] = sum;
+            }
+        }
+    }
+
+    // state.acceleration = the pressure acceleration with the viscosities
+    // the scene names, walls included.
+    template <class Kernel>
+    void pressure_acceleration(const Params<D>& params, const Kernel& double_kernel,
+                               const BoundaryParticles<D>* boundary,
+                               const PairViscosities& viscosities, State<D>& state) {
+        static_assert(Kernel::smooth_at_origin, "a particle is its own candidate");
+        const typename Kernel::Single kernel(double_kernel.h);
+        const auto order = cells_.order();
+        const std::size_t n = cells_.fluid_count(), total = cells_.sorted_count();
+        for (int a = 0; a < D; ++a)
+            resize_with_headroom(sorted_.velocity[a], total);
+        for (auto* field : {&sorted_.mass, &sorted_.density, &sorted_.pressure_term,
+                            &sorted_.volume, &sorted_.wall})
+            resize_with_headroom(*field, total);
+#pragma omp parallel for schedule(static)
+        for (std::size_t k = 0; k < total; ++k) {
+            const std::uint32_t j = order[k];
+            const bool fluid = j < n;
+            const Vec<D> v = fluid ? state.velocity[j] : boundary->velocities()[j - n];
+            for (int a = 0; a < D; ++a)
+                sorted_.velocity[a][k] = float(v[a]);
+            if (fluid) {
+                const Real rho = state.density[j];
+                sorted_.mass[k] = float(params.mass);
+                sorted_.density[k] = float(rho);
+                sorted_.pressure_term[k] = float(state.pressure[j] / (rho * rho));
+                sorted_.volume[k] = float(params.mass / rho);
+                sorted_.wall[k] = 0;
+            } else {
+                const Real volume = boundary->volumes()[j - n];
+                sorted_.mass[k] = float(params.rest_density * volume);
+                sorted_.density[k] = 0; // the fluid particle's, in the loop
+                sorted_.pressure_term[k] = 0;
+                sorted_.volume[k] = float(volume);
+                sorted_.wall[k] = 1;
+            }
+        }
+        prepare_buffers();
+        // Compiled for each set of viscosities, so no loop tests for them.
+        const auto accelerate = [&](auto artificial_flag, auto laminar_flag) {
+            constexpr bool artificial = decltype(artificial_flag)::value;
+            constexpr bool laminar = decltype(laminar_flag)::value;
+            const MonaghanTerm<float> Pi =
+                artificial ? viscosities.artificial->single() : MonaghanTerm<float>{};
+            const MorrisViscosity::Single morris =
+                laminar ? viscosities.laminar->single() : MorrisViscosity::Single{};
+            const auto cells = cells_.cells();
+#pragma omp parallel for schedule(dynamic, 16)
+            for (std::size_t c = 0; c < cells.size(); ++c) {
+                Buffers& b = buffers_[omp_get_thread_num()];
+                const auto& cell = cells[c];
+                const Vec<D> reference = gather_positions(cell, b);
+                for (int a = 0; a < D; ++a)
+                    gather(cell, sorted_.velocity[a], b.velocity[a], 0.f, b.padded);
+                gather(cell, sorted_.mass, b.mass, 0.f, b.padded);
+                gather(cell, sorted_.pressure_term, b.pressure_term, 0.f, b.padded);
+                gather(cell, sorted_.wall, b.wall, 0.f, b.padded);
+                if constexpr (artificial)
+                    gather(cell, sorted_.density, b.density, 1.f, b.padded);
+                if constexpr (laminar)
+                    gather(cell, sorted_.volume, b.volume, 0.f, b.padded);
+                const Lanes l = b.lanes();
+                for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
+                    const FVec x_i = offset(k, reference);
+                    FVec v_i;
+                    for (int a = 0; a < D; ++a)
+                        v_i[a] = sorted_.velocity[a][k];
+                    const float pt_i = sorted_.pressure_term[k], rho_i = sorted_.density[k];
+                    const float viscous_scale = laminar ? morris.two_mu / rho_i : 0.f;
+                    const FVec a_i = sum_candidates<FVec>(l.padded, [=](std::size_t m) {
+                            const FVec x_ij = x_i - l.position(m);
+                            const FVec v_ij = v_i - l.velocity(m);
+                            const float r2 = glm::dot(x_ij, x_ij);
+                            const float v_dot_x = glm::dot(v_ij, x_ij);
+                            const float r = std::sqrt(r2);
+                            const float g = kernel.dW_over_r(r);
+                            const bool wall = l.wall[m] > 0;
+                            float factor = pt_i + (wall ? pt_i : l.pressure_term[m]);
+                            if constexpr (artificial)
+                                factor += Pi(v_dot_x, rho_i + (wall ? rho_i : l.density[m]), r2);
+                            const float pressure = -l.mass[m] * factor * g;
+                            float viscous = 0;
+                            if constexpr (laminar)
+                                viscous = viscous_scale * morris(l.volume[m], r2 * g, r2);
+                            return pressure * x_ij + viscous * v_ij;
+                        });
+                    state.acceleration[order[k]] = Vec<D>(a_i);
+                }
+            }
+        };
+        const auto with_laminar = [&](auto artificial_flag) {
+            if (viscosities.laminar)
+                accelerate(artificial_flag, std::true_type{});
+            else
+                accelerate(artificial_flag, std::false_type{});
+        };
+        if (viscosities.artificial)
+            with_laminar(std::true_type{});
+        else
+            with_laminar(std::false_type{});
+    }
+
+  private:
+    using FVec = glm::vec<D, float>;
+    // Per sorted entry, in float.
+    struct SortedFields {
+        std::array<std::vector<float>, D> velocity;
+        std::vector<float> mass, density, pressure_term, volume, wall;
+    };
+    // A cell's neighbourhood as the loops read it: plain pointers, copied
+    // into each loop's closure, so GCC sees that no load changes in the loop
+    // (through a reference to the vectors it keeps the loop scalar).
+    struct Lanes {
+        const float *x, *y, *z, *vx, *vy, *vz; // z, vz: 3D only
+        const float *mass, *density, *pressure_term, *volume, *wall;
+        std::size_t padded;
+
+        FVec position(std::size_t m) const {
+            if constexpr (D == 2)
+                return {x[m], y[m]};
+            else
+                return {x[m], y[m], z[m]};
+        }
+        FVec velocity(std::size_t m) const {
+            if constexpr (D == 2)
+                return {vx[m], vy[m]};
+            else
+                return {vx[m], vy[m], vz[m]};
+        }
+    };
+    // One thread's copy of a cell's neighbourhood, padded to whole vectors.
+    struct Buffers {
+        std::array<std::vector<float>, D> x, velocity;
+        std::vector<float> mass, density, pressure_term, volume, wall;
+        std::size_t padded = 0;
+
+        Lanes lanes() const {
+            return {x[0].data(),
+                    x[1].data(),
+                    D == 3 ? x[D - 1].data() : nullptr,
+                    velocity[0].data(),
+                    velocity[1].data(),
+                    D == 3 ? velocity[D - 1].data() : nullptr,
+                    mass.data(),
+                    density.data(),
+                    pressure_term.data(),
+                    volume.data(),
+                    wall.data(),
+                    padded};
+        }
+    };
+
+    void prepare_buffers() {
+        buffers_.resize(std::max<std::size_t>(buffers_.size(), omp_get_max_threads()));
+        const std::size_t size = cells_.max_candidates() + float_lanes;
+        for (Buffers& b : buffers_) {
+            for (int a = 0; a < D; ++a) {
+                resize_with_headroom(b.x[a], size);
+                resize_with_headroom(b.velocity[a], size);
+            }
+            for (auto* field : {&b.mass, &b.density, &b.pressure_term, &b.volume, &b.wall})
+                resize_with_headroom(*field, size);
+        }
+    }
+
+    // Copies the cell's candidates' positions into b, as offsets from its
+    // first particle (returned); the padding lanes lie far outside the support.
+    Vec<D> gather_positions(const typename CellNeighbourhoods<D>::Cell& cell, Buffers& b) const {
+        Vec<D> reference;
+        for (int a = 0; a < D; ++a)
+            reference[a] = cells_.sorted_positions(a)[cell.begin];
+        for (int a = 0; a < D; ++a) {
+            const Real* x = cells_.sorted_positions(a).data();
+            float* out = b.x[a].data();
+            const Real r = reference[a];
+            std::size_t m = 0;
+            for (const auto& run : cells_.runs(cell))
+                for (std::uint32_t k = run.begin; k < run.end; ++k)
+                    out[m++] = float(x[k] - r);
+            b.padded = (m + float_lanes - 1) / float_lanes * float_lanes;
+            for (; m < b.padded; ++m)
+                out[m] = 1e18f;
+        }
+        return reference;
+    }
+    // Copies one field of the cell's candidates into `out`, then `padding`
+    // up to `padded`.
+    void gather(const typename CellNeighbourhoods<D>::Cell& cell, const std::vector<float>& field,
+                std::vector<float>& out, float padding, std::size_t padded) const {
+        std::size_t m = 0;
+        for (const auto& run : cells_.runs(cell)) {
+            std::copy(field.begin() + run.begin, field.begin() + run.end,
+                      out.begin() + std::ptrdiff_t(m));
+            m += run.end - run.begin;
+        }
+        std::fill(out.begin() + std::ptrdiff_t(m), out.begin() + std::ptrdiff_t(padded), padding);
+    }
+    FVec offset(std::uint32_t k, const Vec<D>& reference) const {
+        FVec x;
+        for (int a = 0; a < D; ++a)
+            x[a] = float(cells_.sorted_positions(a)[k] - reference[a]);
+        return x;
+    }
+    // sum over m < padded of term(m), a float or an array of D; an OpenMP
+    // simd reduction, so the compiler vectorises it.
+    template <class T, class Term>
+    static T sum_candidates(std::size_t padded, const Term& term_argument) {
+        const Term term = term_argument; // a local copy, as in neighbour_sum.hpp
+        if constexpr (std::is_same_v<T, float>) {
+            float s = 0;
+#pragma omp simd reduction(+ : s)
+            for (std::size_t m = 0; m < padded; ++m)
+                s += term(m);
+            return s;
+        } else if constexpr (D == 2) {
+            float x = 0, y = 0;
+#pragma omp simd reduction(+ : x, y)
+            for (std::size_t m = 0; m < padded; ++m) {
+                const T t = term(m);
+                x += t.x;
+                y += t.y;
+            }
+            return {x, y};
+        } else {
+            float x = 0, y = 0, z = 0;
+#pragma omp simd reduction(+ : x, y, z)
+            for (std::size_t m = 0; m < padded; ++m) {
+                const T t = term(m);
+                x += t.x;
+                y += t.y;
+                z += t.z;
+            }
+            return {x, y, z};
+        }
+    }
+
+    CellNeighbourhoods<D> cells_;
+    SortedFields sorted_;
+    std::vector<Buffers> buffers_;
+};
+
+} // namespace sph

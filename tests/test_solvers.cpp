@@ -70,22 +70,30 @@ TEST_CASE("Tait's law: zero at rest, sound speed sqrt(K / rho0), no tension", "[
 TEST_CASE("wall particles give a fluid at rest exactly the rest density", "[solvers]") {
     // Every particle, the ones beside walls and in corners included, sees a
     // full lattice: fluid on one side, wall particles on the other.
+    // In double, and in wcsph's single-precision cell passes to float's
+    // round-off (sums of ~30 terms of 6e-8 relative error each).
     for (int dimension : {2, 3})
         for (const char* kernel : {"seed", "cubic_spline", "wendland_c2"})
-            for (const char* solver : {"wcsph", "dfsph"}) {
-                INFO(dimension << "D, " << kernel << ", " << solver);
-                const Scene scene = tank(dimension, solver, kernel);
-                if (dimension == 2) {
-                    auto sim = make_simulation<2>(scene);
-                    REQUIRE(sim.boundary() != nullptr);
-                    sim.update_fields();
-                    CHECK(max_relative_density_error(sim, 0.05) < 1e-9);
-                } else {
-                    auto sim = make_simulation<3>(scene);
-                    sim.update_fields();
-                    CHECK(max_relative_density_error(sim, 0.03) < 1e-9);
+            for (const char* solver : {"wcsph", "dfsph"})
+                for (const char* precision : {"double", "single"}) {
+                    const bool single = std::string(precision) == "single";
+                    if (single && (std::string(solver) != "wcsph" || std::string(kernel) == "seed"))
+                        continue;
+                    INFO(dimension << "D, " << kernel << ", " << solver << ", " << precision);
+                    const Scene scene =
+                        tank(dimension, solver, kernel, {{"solver.precision", precision}});
+                    const Real tolerance = single ? 2e-6 : 1e-9;
+                    if (dimension == 2) {
+                        auto sim = make_simulation<2>(scene);
+                        REQUIRE(sim.boundary() != nullptr);
+                        sim.update_fields();
+                        CHECK(max_relative_density_error(sim, 0.05) < tolerance);
+                    } else {
+                        auto sim = make_simulation<3>(scene);
+                        sim.update_fields();
+                        CHECK(max_relative_density_error(sim, 0.03) < tolerance);
+                    }
                 }
-            }
 }
 
 TEST_CASE("the walls of a box are sampled as deep as the kernel reaches", "[solvers]") {

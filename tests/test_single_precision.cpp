@@ -1,0 +1,193 @@
+// wcsph's single-precision cell passes (src/sph/single_precision/cell_passes.hpp)
+// against the double passes over neighbour lists, on a flowing state with
+// walls and a moving paddle: the same density and accelerations to float's
+// round-off, each viscosity's share included; and the scene's
+// solver.precision key.
+#include "io/input_error.hpp"
+#include "io/scene_setup.hpp"
+#include "sph/density.hpp"
+#include "sph/effects/artificial_viscosity.hpp"
+#include "sph/effects/laminar_viscosity.hpp"
+#include "sph/equation_of_state.hpp"
+#include "sph/neighbours/sorted_grid.hpp"
+#include "sph/pressure_acceleration.hpp"
+#include "sph/single_precision/cell_passes.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+using namespace sph;
+
+namespace {
+
+// A dam break beside a paddle that pushes into it, far from the origin (the
+// cell offsets must keep float's accuracy there), run in double for a while.
+template <int D>
+Scene flowing_scene(const std::string& kernel, const std::string& precision) {
+    const bool three = D == 3;
+    const std::string z = three ? ", 1000.04" : "";
+    const std::string z0 = three ? ", 1000" : "";
+    return default_scene({
+        {"dimension", std::to_string(D)},
+        {"solver.name", "wcsph"},
+        {"solver.kernel", kernel},
+        {"solver.precision", precision},
+        {"solver.dt", "2e-4"},
+        {"duration", "0.05"},
+        {"fluid.spacing", three ? "0.008" : "0.005"},
+        {"domain.min", "[1000, 1000" + z0 + "]"},
+        {"domain.max", "[1000.2, 1000.12" + z + "]"},
+        {"fluid.blocks", "[{\"min\": [1000, 1000" + z0 + "], \"max\": [1000.08, 1000.08" + z +
+                             "]}]"},
+        {"effects.paddles", "[{\"min\": [1000.09, 1000" + z0 + "], \"max\": [1000.11, 1000.1" + z +
+                                "], \"motion\": \"linear\", \"velocity\": [-0.5, 0" +
+                                (three ? ", 0" : "") + "]}]"},
+    });
+}
+
+template <int D>
+Real largest(const std::vector<Vec<D>>& a) {
+    Real m = 0;
+    for (const auto& v : a)
+        m = std::max(m, glm::length(v));
+    return m;
+}
+
+template <int D>
+Real largest_difference(const std::vector<Vec<D>>& a, const std::vector<Vec<D>>& b) {
+    Real m = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        m = std::max(m, glm::length(a[i] - b[i]));
+    return m;
+}
+
+template <int D>
+void check_against_double(const std::string& kernel_name) {
+    INFO(D << "D, " << kernel_name);
+    auto sim = make_simulation<D>(flowing_scene<D>(kernel_name, "double"));
+    for (int k = 0; k < 150; ++k)
+        sim.step();
+    const Params<D>& params = sim.params();
+    const BoundaryParticles<D>* walls = sim.boundary();
+    REQUIRE(walls != nullptr);
+    // The paddle moves: its particles' velocities reach the viscous terms.
+    REQUIRE(std::any_of(walls->velocities().begin(), walls->velocities().end(),
+                        [](const Vec<D>& v) { return glm::length(v) > 0.1; }));
+
+    const ArtificialViscosity<D> artificial(0.1);
+    const LaminarViscosity<D> laminar(0.5); // a syrup: its share is large
+    const MonaghanViscosity monaghan = artificial.pair_viscosity(params);
+    const MorrisViscosity morris = laminar.pair_viscosity(params);
+    const std::vector<PairViscosities> sets{
+        {}, {&monaghan, nullptr}, {nullptr, &morris}, {&monaghan, &morris}};
+
+    with_kernel<D>(params.kernel, params.h, [&](const auto& kernel) {
+        if constexpr (std::decay_t<decltype(kernel)>::smooth_at_origin) {
+            // Double, over neighbour lists.
+            State<D> in_double = sim.state();
+            NeighbourList neighbours, wall_neighbours;
+            SortedGrid<D>().find(in_double.position, params.h, neighbours);
+            walls->find_neighbours(in_double.position, wall_neighbours);
+            compute_density(params, kernel, neighbours, in_double);
+            add_boundary_density(params, kernel, *walls, wall_neighbours, in_double);
+            compute_pressure_tait(params, in_double);
+            // Single, over cells.
+            State<D> in_single = sim.state();
+            CellPasses<D> cells;
+            cells.find_cells(in_single.position, walls, params.h);
+            cells.density(params, kernel, walls, in_single);
+            Real worst_density = 0;
+            for (std::size_t i = 0; i < in_double.size(); ++i)
+                worst_density = std::max(worst_density, std::abs(in_single.density[i] /
+                                                                     in_double.density[i] -
+                                                                 1));
+            CHECK(worst_density < 2e-6);
+            // The same pressure, so that the accelerations compare the passes only.
+            in_single.density = in_double.density;
+            in_single.pressure = in_double.pressure;
+
+            std::vector<std::vector<Vec<D>>> doubles, singles;
+            std::vector<Real> pressure_term;
+            for (const auto& set : sets) {
+                compute_pressure_acceleration(params, kernel, neighbours, walls, wall_neighbours,
+                                              set, pressure_term, in_double);
+                cells.pressure_acceleration(params, kernel, walls, set, in_single);
+                doubles.push_back(in_double.acceleration);
+                singles.push_back(in_single.acceleration);
+            }
+            const Real scale = largest(doubles[0]);
+            REQUIRE(scale > 1);
+            CHECK(largest_difference(singles[0], doubles[0]) < 1e-5 * scale);
+            // Each viscosity's share (what it adds to the pressure pass)
+            // agrees to float's round-off of the whole sum.
+            for (std::size_t s = 1; s < sets.size(); ++s) {
+                INFO("viscosity set " << s);
+                std::vector<Vec<D>> share_double(doubles[s].size()), share_single(doubles[s].size());
+                for (std::size_t i = 0; i < share_double.size(); ++i) {
+                    share_double[i] = doubles[s][i] - doubles[0][i];
+                    share_single[i] = singles[s][i] - singles[0][i];
+                }
+                const Real share = largest(share_double);
+                CHECK(share > 1e-3 * scale); // it does act
+                CHECK(largest_difference(share_single, share_double) < 1e-5 * scale + 1e-3 * share);
+            }
+        }
+    });
+}
+
+} // namespace
+
+TEST_CASE("single-precision cell passes agree with the double passes", "[single]") {
+    for (const char* kernel : {"cubic_spline", "wendland_c2"}) {
+        check_against_double<2>(kernel);
+        check_against_double<3>(kernel);
+    }
+}
+
+TEST_CASE("single-precision steps give the same bits with one thread and two", "[single]") {
+    const Scene scene = flowing_scene<2>("wendland_c2", "single");
+    auto run = [&](int threads) {
+        omp_set_num_threads(threads);
+        auto sim = make_simulation<2>(scene);
+        for (int k = 0; k < 20; ++k)
+            sim.step();
+        return sim.state();
+    };
+    const int before = omp_get_max_threads();
+    const State<2> one = run(1);
+    const State<2> two = run(2);
+    omp_set_num_threads(before);
+    CHECK(one.position == two.position);
+    CHECK(one.velocity == two.velocity);
+    CHECK(one.density == two.density);
+}
+
+TEST_CASE("solver.precision: auto picks single where it can run, single says why not",
+          "[single]") {
+    CHECK(derive(default_scene({{"solver.name", "wcsph"}})).precision == "single");
+    CHECK(derive(default_scene({{"solver.name", "dfsph"}})).precision == "double");
+    CHECK(derive(default_scene({{"solver.name", "seed"}})).precision == "double");
+    CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"solver.neighbour_search", "hash"}}))
+              .precision == "double");
+    CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"effects.xsph.epsilon", "0.5"}})).precision ==
+          "double");
+    CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"solver.precision", "double"}}))
+              .precision == "double");
+    for (const std::vector<Override>& bad :
+         {std::vector<Override>{{"solver.name", "dfsph"}},
+          {{"solver.name", "wcsph"}, {"solver.kernel", "seed"}},
+          {{"solver.name", "wcsph"}, {"effects.surface_tension.gamma", "0.1"}},
+          {{"solver.name", "wcsph"}, {"solver.neighbour_search", "all_pairs"}}}) {
+        std::vector<Override> o = bad;
+        o.push_back({"solver.precision", "single"});
+        try {
+            default_scene(o);
+            FAIL("accepted single precision for " << bad.front().value);
+        } catch (const InputError& e) {
+            CHECK_THAT(e.what(), Catch::Contains("solver.precision"));
+        }
+    }
+}

@@ -979,9 +979,9 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.solver.precision = r.choice(
         "solver.precision", d.solver.precision, {"auto", "single", "double"},
         "Arithmetic of wcsph's density and pressure passes: single (float, a grid cell at a "
-        "time, about twice as fast) or double (neighbour lists); auto: single where it can "
-        "run (wcsph, a smooth kernel, the sorted grid, no XSPH or surface tension), else "
-        "double.");
+        "time, no neighbour lists; 1.2-1.8x faster in 2D, even in 3D) or double (neighbour "
+        "lists); auto: single where it can run (wcsph, a smooth kernel, the sorted grid, no "
+        "XSPH or surface tension), else double.");
 
     s.watchdog.retries =
         r.integer("watchdog.retries", d.watchdog.retries, 0, 20,

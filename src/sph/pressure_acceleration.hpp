@@ -39,6 +39,22 @@ namespace sph {
 struct PairViscosities {
     const MonaghanViscosity* artificial = nullptr;
     const MorrisViscosity* laminar = nullptr;
+
+    // Calls pass(artificial, laminar) with a std::bool_constant for each,
+    // so that a pass compiled for each set has no test in its loops.
+    template <class Pass>
+    void dispatch(Pass&& pass) const {
+        const auto with_laminar = [&](auto has_artificial) {
+            if (laminar)
+                pass(has_artificial, std::true_type{});
+            else
+                pass(has_artificial, std::false_type{});
+        };
+        if (artificial)
+            with_laminar(std::true_type{});
+        else
+            with_laminar(std::false_type{});
+    }
 };
 
 template <int D, class Kernel>
@@ -53,7 +69,7 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
         pressure_term[i] = state.pressure[i] / (state.density[i] * state.density[i]);
-    // Compiled for each set of viscosities, so no loop tests for them.
+    // Compiled for each set of viscosities (PairViscosities::dispatch).
     const auto accelerate = [&](auto artificial_flag, auto laminar_flag) {
         constexpr bool artificial = decltype(artificial_flag)::value;
         constexpr bool laminar = decltype(laminar_flag)::value;
@@ -101,16 +117,7 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
             state.acceleration[i] = a;
         }
     };
-    const auto with_laminar = [&](auto artificial_flag) {
-        if (viscosities.laminar)
-            accelerate(artificial_flag, std::true_type{});
-        else
-            accelerate(artificial_flag, std::false_type{});
-    };
-    if (viscosities.artificial)
-        with_laminar(std::true_type{});
-    else
-        with_laminar(std::false_type{});
+    viscosities.dispatch(accelerate);
 }
 
 } // namespace sph

@@ -70,13 +70,7 @@ class CellPasses {
             sorted_.mass[k] = float(j < n ? params.mass
                                           : params.rest_density * boundary->volumes()[j - n]);
         }
-        prepare_buffers();
-        const auto cells = cells_.cells();
-#pragma omp parallel for schedule(dynamic, 16)
-        for (std::size_t c = 0; c < cells.size(); ++c) {
-            Buffers& b = buffers_[omp_get_thread_num()];
-            const auto& cell = cells[c];
-            const Vec<D> reference = gather_positions(cell, b);
+        for_each_cell([&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
             gather(cell, sorted_.mass, b.mass, 0.f, b.padded);
             const Lanes l = b.lanes();
             for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
@@ -88,7 +82,7 @@ class CellPasses {
                 });
                 state.density[order[k]] = sum;
             }
-        }
+        });
     }
 
     // state.acceleration = the pressure acceleration with the viscosities
@@ -129,8 +123,7 @@ class CellPasses {
                 sorted_.wall[k] = 1;
             }
         }
-        prepare_buffers();
-        // Compiled for each set of viscosities, so no loop tests for them.
+        // Compiled for each set of viscosities (PairViscosities::dispatch).
         const auto accelerate = [&](auto artificial_flag, auto laminar_flag) {
             constexpr bool artificial = decltype(artificial_flag)::value;
             constexpr bool laminar = decltype(laminar_flag)::value;
@@ -138,12 +131,7 @@ class CellPasses {
                 artificial ? viscosities.artificial->single() : MonaghanTerm<float>{};
             const MorrisViscosity::Single morris =
                 laminar ? viscosities.laminar->single() : MorrisViscosity::Single{};
-            const auto cells = cells_.cells();
-#pragma omp parallel for schedule(dynamic, 16)
-            for (std::size_t c = 0; c < cells.size(); ++c) {
-                Buffers& b = buffers_[omp_get_thread_num()];
-                const auto& cell = cells[c];
-                const Vec<D> reference = gather_positions(cell, b);
+            for_each_cell([&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
                 for (int a = 0; a < D; ++a)
                     gather(cell, sorted_.velocity[a], b.velocity[a], 0.f, b.padded);
                 gather(cell, sorted_.mass, b.mass, 0.f, b.padded);
@@ -180,18 +168,9 @@ class CellPasses {
                         });
                     state.acceleration[order[k]] = Vec<D>(a_i);
                 }
-            }
+            });
         };
-        const auto with_laminar = [&](auto artificial_flag) {
-            if (viscosities.laminar)
-                accelerate(artificial_flag, std::true_type{});
-            else
-                accelerate(artificial_flag, std::false_type{});
-        };
-        if (viscosities.artificial)
-            with_laminar(std::true_type{});
-        else
-            with_laminar(std::false_type{});
+        viscosities.dispatch(accelerate);
     }
 
   private:
@@ -244,6 +223,22 @@ class CellPasses {
         }
     };
 
+    using Cell = typename CellNeighbourhoods<D>::Cell;
+
+    // Calls work(cell, buffers, reference) for every cell holding fluid, in
+    // parallel, with this thread's buffers holding the cell's candidates'
+    // positions as offsets from `reference` (gather_positions).
+    template <class Work>
+    void for_each_cell(const Work& work) {
+        prepare_buffers();
+        const auto cells = cells_.cells();
+#pragma omp parallel for schedule(dynamic, 16)
+        for (std::size_t c = 0; c < cells.size(); ++c) {
+            Buffers& b = buffers_[omp_get_thread_num()];
+            work(cells[c], b, gather_positions(cells[c], b));
+        }
+    }
+
     void prepare_buffers() {
         buffers_.resize(std::max<std::size_t>(buffers_.size(), omp_get_max_threads()));
         const std::size_t size = cells_.max_candidates() + float_lanes;
@@ -259,7 +254,7 @@ class CellPasses {
 
     // Copies the cell's candidates' positions into b, as offsets from its
     // first particle (returned); the padding lanes lie far outside the support.
-    Vec<D> gather_positions(const typename CellNeighbourhoods<D>::Cell& cell, Buffers& b) const {
+    Vec<D> gather_positions(const Cell& cell, Buffers& b) const {
         Vec<D> reference;
         for (int a = 0; a < D; ++a)
             reference[a] = cells_.sorted_positions(a)[cell.begin];
@@ -279,7 +274,7 @@ class CellPasses {
     }
     // Copies one field of the cell's candidates into `out`, then `padding`
     // up to `padded`.
-    void gather(const typename CellNeighbourhoods<D>::Cell& cell, const std::vector<float>& field,
+    void gather(const Cell& cell, const std::vector<float>& field,
                 std::vector<float>& out, float padding, std::size_t padded) const {
         std::size_t m = 0;
         for (const auto& run : cells_.runs(cell)) {

@@ -326,7 +326,7 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
     // Positions in cell order, an array per axis: neighbouring cells are then
     // contiguous runs that the distance loop streams through.
     for (int a = 0; a < D; ++a)
-        sorted_x_[a].resize(n);
+        resize_with_headroom(sorted_x_[a], n + sorted_tail);
 #pragma omp parallel for schedule(static)
     for (std::size_t k = 0; k < n; ++k)
         for (int a = 0; a < D; ++a)

@@ -52,8 +52,13 @@ class SortedGrid final : public NeighbourSearch<D> {
     // by ascending position; returns how many.
     using NeighbourRuns = std::array<Range, D == 2 ? 9 : 27>;
     int neighbour_runs(std::size_t cell, NeighbourRuns& runs) const;
-    // The positions in cell order, one array per axis.
-    std::span<const Real> sorted_positions(int axis) const { return sorted_x_[axis]; }
+    // The positions in cell order, one array per axis. sorted_tail more
+    // entries follow each in memory, readable (their values mean nothing):
+    // a loop may copy whole vectors past a run's end.
+    static constexpr std::size_t sorted_tail = 16;
+    std::span<const Real> sorted_positions(int axis) const {
+        return {sorted_x_[axis].data(), order_.size()};
+    }
 
     // Whether the last find hashed the occupied cells (a sparse or huge box)
     // instead of indexing a table by Morton code.

@@ -37,6 +37,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <omp.h>
 #include <vector>
 
@@ -44,6 +45,7 @@ namespace sph {
 
 // Floats in one vector register of the target: the cell loops' width.
 inline constexpr std::uint32_t float_lanes = 2 * simd_lanes;
+static_assert(float_lanes <= SortedGrid<2>::sorted_tail);
 
 template <int D>
 class CellPasses {
@@ -63,7 +65,7 @@ class CellPasses {
         const typename Kernel::Single kernel(double_kernel.h);
         const auto order = cells_.order();
         const std::size_t n = cells_.fluid_count(), total = cells_.sorted_count();
-        resize_with_headroom(sorted_.mass, total);
+        resize_with_headroom(sorted_.mass, total + float_lanes);
 #pragma omp parallel for schedule(static)
         for (std::size_t k = 0; k < total; ++k) {
             const std::uint32_t j = order[k];
@@ -71,7 +73,7 @@ class CellPasses {
                                           : params.rest_density * boundary->volumes()[j - n]);
         }
         for_each_cell([&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
-            gather(cell, sorted_.mass, b.mass, 0.f, b.padded);
+            gather(cell, sorted_.mass, b.mass, 0.f);
             const Lanes l = b.lanes();
             for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
                 const FVec x_i = offset(k, reference);
@@ -96,10 +98,10 @@ class CellPasses {
         const auto order = cells_.order();
         const std::size_t n = cells_.fluid_count(), total = cells_.sorted_count();
         for (int a = 0; a < D; ++a)
-            resize_with_headroom(sorted_.velocity[a], total);
+            resize_with_headroom(sorted_.velocity[a], total + float_lanes);
         for (auto* field : {&sorted_.mass, &sorted_.density, &sorted_.pressure_term,
                             &sorted_.volume, &sorted_.wall})
-            resize_with_headroom(*field, total);
+            resize_with_headroom(*field, total + float_lanes);
 #pragma omp parallel for schedule(static)
         for (std::size_t k = 0; k < total; ++k) {
             const std::uint32_t j = order[k];
@@ -133,14 +135,14 @@ class CellPasses {
                 laminar ? viscosities.laminar->single() : MorrisViscosity::Single{};
             for_each_cell([&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
                 for (int a = 0; a < D; ++a)
-                    gather(cell, sorted_.velocity[a], b.velocity[a], 0.f, b.padded);
-                gather(cell, sorted_.mass, b.mass, 0.f, b.padded);
-                gather(cell, sorted_.pressure_term, b.pressure_term, 0.f, b.padded);
-                gather(cell, sorted_.wall, b.wall, 0.f, b.padded);
+                    gather(cell, sorted_.velocity[a], b.velocity[a], 0.f);
+                gather(cell, sorted_.mass, b.mass, 0.f);
+                gather(cell, sorted_.pressure_term, b.pressure_term, 0.f);
+                gather(cell, sorted_.wall, b.wall, 0.f);
                 if constexpr (artificial)
-                    gather(cell, sorted_.density, b.density, 1.f, b.padded);
+                    gather(cell, sorted_.density, b.density, 1.f);
                 if constexpr (laminar)
-                    gather(cell, sorted_.volume, b.volume, 0.f, b.padded);
+                    gather(cell, sorted_.volume, b.volume, 0.f);
                 const Lanes l = b.lanes();
                 for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
                     const FVec x_i = offset(k, reference);
@@ -202,7 +204,10 @@ class CellPasses {
         }
     };
     // One thread's copy of a cell's neighbourhood, padded to whole vectors.
-    struct Buffers {
+    // A cache line of its own: a thread writes `padded` for every cell, and
+    // sharing its line with the next thread's vectors cost 2D a third of
+    // the second thread's gain.
+    struct alignas(64) Buffers {
         std::array<std::vector<float>, D> x, velocity;
         std::vector<float> mass, density, pressure_term, volume, wall;
         std::size_t padded = 0;
@@ -263,26 +268,40 @@ class CellPasses {
             float* out = b.x[a].data();
             const Real r = reference[a];
             std::size_t m = 0;
-            for (const auto& run : cells_.runs(cell))
-                for (std::uint32_t k = run.begin; k < run.end; ++k)
-                    out[m++] = float(x[k] - r);
+            // Whole vectors at a time, past each run's end (sorted_tail,
+            // and the next run or the padding overwrites what lies there):
+            // a run is about 8 particles, and a loop of that length costs
+            // more in its prologue and remainder than in its body.
+            for (const auto& run : cells_.runs(cell)) {
+                for (std::uint32_t c = 0; c < run.end - run.begin; c += float_lanes)
+                    for (std::uint32_t l = 0; l < float_lanes; ++l)
+                        out[m + c + l] = float(x[run.begin + c + l] - r);
+                m += run.end - run.begin;
+            }
+            fill_lanes(out + m, 1e18f);
             b.padded = (m + float_lanes - 1) / float_lanes * float_lanes;
-            for (; m < b.padded; ++m)
-                out[m] = 1e18f;
         }
         return reference;
     }
     // Copies one field of the cell's candidates into `out`, then `padding`
-    // up to `padded`.
+    // up to the padded end.
     void gather(const Cell& cell, const std::vector<float>& field,
-                std::vector<float>& out, float padding, std::size_t padded) const {
+                std::vector<float>& out, float padding) const {
         std::size_t m = 0;
         for (const auto& run : cells_.runs(cell)) {
-            std::copy(field.begin() + run.begin, field.begin() + run.end,
-                      out.begin() + std::ptrdiff_t(m));
+            // As in gather_positions: whole vectors, past the run's end.
+            for (std::uint32_t c = 0; c < run.end - run.begin; c += float_lanes)
+                std::memcpy(out.data() + m + c, field.data() + run.begin + c,
+                            float_lanes * sizeof(float));
             m += run.end - run.begin;
         }
-        std::fill(out.begin() + std::ptrdiff_t(m), out.begin() + std::ptrdiff_t(padded), padding);
+        fill_lanes(out.data() + m, padding);
+    }
+    // Writes one vector of `value` from `at`: the padding, which that
+    // reaches (the buffers have room past it).
+    static void fill_lanes(float* at, float value) {
+        for (std::uint32_t l = 0; l < float_lanes; ++l)
+            at[l] = value;
     }
     FVec offset(std::uint32_t k, const Vec<D>& reference) const {
         FVec x;

@@ -151,6 +151,13 @@ TEST_CASE("single-precision cell passes agree with the double passes", "[single]
 TEST_CASE("solver.precision: auto picks single where it can run, single says why not",
           "[single]") {
     CHECK(derive(default_scene({{"solver.name", "wcsph"}})).precision == "single");
+    // 3D: single only when asked for (even speed, more memory).
+    CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"dimension", "3"}})).precision ==
+          "double");
+    CHECK(derive(default_scene({{"solver.name", "wcsph"},
+                                {"dimension", "3"},
+                                {"solver.precision", "single"}}))
+              .precision == "single");
     CHECK(derive(default_scene({{"solver.name", "dfsph"}})).precision == "double");
     CHECK(derive(default_scene({{"solver.name", "seed"}})).precision == "double");
     CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"solver.neighbour_search", "hash"}}))

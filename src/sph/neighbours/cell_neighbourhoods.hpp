@@ -37,32 +37,34 @@ class CellNeighbourhoods {
     // Positions in sorted order, one array per axis.
     std::span<const Real> sorted_positions(int axis) const { return grid_.sorted_positions(axis); }
 
-    // Cells holding fluid, along the Morton curve.
+    // The grid's cells along the Morton curve (those without fluid
+    // included: a pass skips them), each with its fluid particles and the
+    // runs of the cells around it.
     struct Cell {
         std::uint32_t begin, fluid_end; // its fluid particles, sorted positions
-        std::uint32_t runs_begin, runs_end; // into runs()
-        std::uint32_t candidates;           // particles in its runs
+        std::span<const Range> runs;    // the 3^D cells around it, itself included
+        std::uint32_t candidates;       // particles in its runs
+        bool has_fluid() const { return fluid_end > begin; }
     };
-    std::span<const Cell> cells() const { return cells_; }
-    std::span<const Range> runs(const Cell& cell) const {
-        return {runs_.data() + cell.runs_begin, runs_.data() + cell.runs_end};
+    std::size_t cell_count() const { return grid_.cell_count(); }
+    Cell cell(std::size_t c) const {
+        return {grid_.cell_begin(c), fluid_end_[c], {runs_[c].data(), run_count_[c]},
+                candidates_[c]};
     }
-    // The most candidates of any cell: the size of a pass's buffers.
+    // The most candidates of any cell with fluid: the size of a pass's buffers.
     std::size_t max_candidates() const { return max_candidates_; }
-    // Sorted entries (fluid and walls), and candidates summed over the cells.
+    // Sorted entries (fluid and walls).
     std::size_t sorted_count() const { return grid_.order().size(); }
-    std::size_t candidate_count() const { return candidate_count_; }
 
   private:
     SortedGrid<D> grid_;
     std::vector<Vec<D>> positions_; // fluid then walls
     std::size_t fluid_count_ = 0;
-    std::vector<typename SortedGrid<D>::NeighbourRuns> grid_runs_; // per grid cell
-    std::vector<std::uint8_t> run_count_;                          // per grid cell
-    std::vector<std::uint32_t> fluid_end_;                         // per grid cell
-    std::vector<Cell> cells_;
-    std::vector<Range> runs_;
-    std::size_t max_candidates_ = 0, candidate_count_ = 0;
+    // Per grid cell.
+    std::vector<typename SortedGrid<D>::NeighbourRuns> runs_;
+    std::vector<std::uint8_t> run_count_;
+    std::vector<std::uint32_t> fluid_end_, candidates_;
+    std::size_t max_candidates_ = 0;
 };
 
 } // namespace sph

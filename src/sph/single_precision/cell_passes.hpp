@@ -236,11 +236,14 @@ class CellPasses {
     template <class Work>
     void for_each_cell(const Work& work) {
         prepare_buffers();
-        const auto cells = cells_.cells();
+        const std::size_t count = cells_.cell_count();
 #pragma omp parallel for schedule(dynamic, 16)
-        for (std::size_t c = 0; c < cells.size(); ++c) {
+        for (std::size_t c = 0; c < count; ++c) {
+            const Cell cell = cells_.cell(c);
+            if (!cell.has_fluid())
+                continue;
             Buffers& b = buffers_[omp_get_thread_num()];
-            work(cells[c], b, gather_positions(cells[c], b));
+            work(cell, b, gather_positions(cell, b));
         }
     }
 
@@ -272,7 +275,7 @@ class CellPasses {
             // and the next run or the padding overwrites what lies there):
             // a run is about 8 particles, and a loop of that length costs
             // more in its prologue and remainder than in its body.
-            for (const auto& run : cells_.runs(cell)) {
+            for (const auto& run : cell.runs) {
                 for (std::uint32_t c = 0; c < run.end - run.begin; c += float_lanes)
                     for (std::uint32_t l = 0; l < float_lanes; ++l)
                         out[m + c + l] = float(x[run.begin + c + l] - r);
@@ -288,7 +291,7 @@ class CellPasses {
     void gather(const Cell& cell, const std::vector<float>& field,
                 std::vector<float>& out, float padding) const {
         std::size_t m = 0;
-        for (const auto& run : cells_.runs(cell)) {
+        for (const auto& run : cell.runs) {
             // As in gather_positions: whole vectors, past the run's end.
             for (std::uint32_t c = 0; c < run.end - run.begin; c += float_lanes)
                 std::memcpy(out.data() + m + c, field.data() + run.begin + c,

@@ -56,7 +56,6 @@ class CellPasses {
                     Real radius) {
         cells_.build(fluid, boundary ? boundary->positions() : std::span<const Vec<D>>{}, radius);
     }
-    const CellNeighbourhoods<D>& cells() const { return cells_; }
 
     // state.density = sum_j m_j W_ij over fluid and wall particles.
     template <class Kernel>

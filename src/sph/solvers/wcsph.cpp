@@ -12,11 +12,14 @@ namespace sph {
 
 namespace {
 
-// The grid cells, then the density over them in float.
+// Density by summation over fluid and wall particles: in double on
+// neighbour lists, or in float on grid cells.
 template <int D, class Kernel>
-void cell_density(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
-                  CellPasses<D>& cells, State<D>& state) {
-    if constexpr (Kernel::smooth_at_origin) {
+void density(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
+             CellPasses<D>& cells, State<D>& state) {
+    if (params.precision == Precision::double_precision) {
+        find_neighbours_and_density(params, kernel, context, state);
+    } else if constexpr (Kernel::smooth_at_origin) {
         {
             auto timed = context.time("neighbour search");
             cells.find_cells(state.position, context.boundary, params.h);
@@ -28,15 +31,11 @@ void cell_density(const Params<D>& params, const Kernel& kernel, StepContext<D>&
     }
 }
 
-// Density by summation over fluid and wall particles, then Tait's pressure:
-// in double on neighbour lists, or in float on grid cells.
+// The density, then Tait's pressure.
 template <int D, class Kernel>
 void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
                           CellPasses<D>& cells, State<D>& state) {
-    if (params.precision == Precision::single)
-        cell_density(params, kernel, context, cells, state);
-    else
-        find_neighbours_and_density(params, kernel, context, state);
+    density(params, kernel, context, cells, state);
     auto timed = context.time("pressure");
     compute_pressure_tait(params, state);
 }
@@ -86,10 +85,8 @@ void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         if (context.output_pressure)
             density_and_pressure(params, kernel, context, cells_, state);
-        else if (params.precision == Precision::single)
-            cell_density(params, kernel, context, cells_, state);
         else // the next step computes its own pressure
-            find_neighbours_and_density(params, kernel, context, state);
+            density(params, kernel, context, cells_, state);
     });
     // The outputs read the neighbour lists (3D culling of buried particles),
     // which single-precision steps do not build.

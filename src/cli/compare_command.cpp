@@ -10,7 +10,9 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 namespace sph {
@@ -42,6 +44,25 @@ Image read_input(const std::string& path) {
         return read_png(path);
     } catch (const ImageReadError& e) {
         throw InputError(path, "", "cannot read the PNG: " + e.reason);
+    }
+}
+
+// Refuses a --diff that is one of the images compared: the same file by
+// device and inode (a hard link, a symlink, "./a.png" for "a.png"), so that
+// writing it cannot destroy an input.
+void check_diff_not_an_input(const fs::path& diff, const std::string& reference,
+                             const std::string& test) {
+    struct stat diff_info {};
+    if (::stat(diff.c_str(), &diff_info) != 0)
+        return; // not there yet: it cannot be an input
+    for (const auto& [input, role] : {std::pair{reference, "reference"}, {test, "test image"}}) {
+        struct stat info {};
+        if (::stat(input.c_str(), &info) == 0 && info.st_dev == diff_info.st_dev &&
+            info.st_ino == diff_info.st_ino)
+            throw InputError("command line", "--diff",
+                             fmt::format("{} is the {} {} itself; writing the difference there "
+                                         "would destroy it: give another path",
+                                         diff.string(), role, input));
     }
 }
 
@@ -86,8 +107,10 @@ CLI::App* add_compare_command(CLI::App& app, CompareCliOptions& options) {
 }
 
 int compare_command(const CompareCliOptions& options) {
-    if (!options.diff.empty())
+    if (!options.diff.empty()) {
+        check_diff_not_an_input(options.diff, options.reference, options.test);
         check_diff_writable(options.diff);
+    }
     const Image reference = read_input(options.reference);
     const Image test = read_input(options.test);
     if (reference.width != test.width || reference.height != test.height)

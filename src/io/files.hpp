@@ -1,7 +1,11 @@
 #pragma once
-// File writing that never leaves a half-written file behind.
+// File writing that never leaves a half-written file behind, and reading
+// that never reads without bound.
 
+#include <cstdint>
 #include <filesystem>
+#include <stdexcept>
+#include <string>
 #include <string_view>
 
 namespace sph {
@@ -9,5 +13,36 @@ namespace sph {
 // Writes to a temporary name beside `path`, then renames: readers see the old
 // file or the whole new one. Throws std::runtime_error naming the path.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
+
+// The largest input of each kind that sphclip reads (docs: "Input limits").
+// Far above any real file of the kind; what they stop is a device, a pipe or
+// a runaway file read until memory runs out.
+struct InputLimit {
+    const char* kind;    // "scene file", "mesh file", "PNG image"
+    std::uint64_t bytes; // at most
+};
+inline constexpr InputLimit scene_file_limit{"scene file", std::uint64_t(16) << 20};
+inline constexpr InputLimit mesh_file_limit{"mesh file", std::uint64_t(512) << 20};
+inline constexpr InputLimit png_file_limit{"PNG image", std::uint64_t(256) << 20};
+
+// An input that cannot be read: `reason` says why, without the path (the
+// caller names the file and the field).
+struct FileReadError : std::runtime_error {
+    std::filesystem::path path;
+    std::string reason;
+    FileReadError(std::filesystem::path path_, std::string reason_)
+        : std::runtime_error(path_.string() + ": " + reason_), path(std::move(path_)),
+          reason(std::move(reason_)) {}
+};
+
+// The whole of `path`, which must be a regular file (a symlink to one is
+// fine) of at most `limit.bytes`. A device (/dev/zero), a FIFO, a socket or
+// a folder is refused without reading it, and so is a larger file; a file
+// that grows past the limit while it is read is refused too. Throws
+// FileReadError.
+std::string read_input_file(const std::filesystem::path& path, const InputLimit& limit);
+
+// "16 MiB", "1.5 GiB": a byte count for messages.
+std::string format_bytes(double bytes);
 
 } // namespace sph

@@ -1,36 +1,116 @@
 #include "io/obj_mesh.hpp"
 
+#include "io/files.hpp"
 #include "io/input_error.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>
-#include <fstream>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
 #include <map>
-#include <sstream>
+#include <string_view>
+#include <vector>
 #include <tiny_obj_loader.h>
 
 namespace sph {
+
+namespace {
+
+// The most corners one `f` line may have. tinyobjloader splits a polygon by
+// ear clipping, quadratic in its corners: a 200,000-corner face took minutes.
+// No exporter writes solids that way; triangles and quads are the rule.
+constexpr std::size_t max_face_corners = 256;
+// Past this distance from the origin a vertex is a mistake, not a solid:
+// the solid checks' cross products would overflow long before.
+constexpr Real max_vertex_distance = 1e12; // m
+
+// Checks what tinyobjloader would let through or take too long on, naming
+// the line: a face with too many corners, a vertex that is not a finite
+// number or lies absurdly far away once scaled.
+void check_obj_lines(std::string_view text, Real scale, const Vec<3>& offset,
+                     const std::function<void(const std::string&)>& fail) {
+    std::size_t line_number = 0;
+    for (std::size_t begin = 0; begin < text.size();) {
+        std::size_t end = text.find('\n', begin);
+        if (end == std::string_view::npos)
+            end = text.size();
+        std::string_view line = text.substr(begin, end - begin);
+        begin = end + 1;
+        ++line_number;
+        const std::size_t first = line.find_first_not_of(" \t");
+        if (first == std::string_view::npos || line.size() < first + 2)
+            continue;
+        line.remove_prefix(first);
+        const bool face = line[0] == 'f' && (line[1] == ' ' || line[1] == '\t');
+        const bool vertex = line[0] == 'v' && (line[1] == ' ' || line[1] == '\t');
+        if (!face && !vertex)
+            continue;
+        std::vector<std::string_view> words;
+        for (std::size_t at = 1; at < line.size();) {
+            const std::size_t w = line.find_first_not_of(" \t\r", at);
+            if (w == std::string_view::npos)
+                break;
+            const std::size_t w_end = std::min(line.find_first_of(" \t\r", w), line.size());
+            words.push_back(line.substr(w, w_end - w));
+            at = w_end;
+            if (face && words.size() > max_face_corners)
+                fail(fmt::format("line {}: a face of more than {} corners; split it into "
+                                 "triangles (sphclip reads faces of at most {} corners)",
+                                 line_number, max_face_corners, max_face_corners));
+        }
+        if (vertex)
+            for (std::size_t a = 0; a < 3 && a < words.size(); ++a) {
+                const std::string word(words[a]);
+                char* stop = nullptr;
+                const double x = std::strtod(word.c_str(), &stop);
+                const double placed = scale * x + offset[int(a)];
+                if (!std::isfinite(x) || !std::isfinite(placed) ||
+                    std::abs(placed) > max_vertex_distance)
+                    fail(fmt::format("line {}: vertex coordinate \"{}\" is {}", line_number,
+                                     word.substr(0, 40),
+                                     std::isfinite(x) && std::isfinite(placed)
+                                         ? fmt::format("{:g} m from the origin once scaled; at "
+                                                       "most {:g} m",
+                                                       std::abs(placed), max_vertex_distance)
+                                         : std::string("not a finite number")));
+            }
+    }
+}
+
+} // namespace
 
 std::shared_ptr<const TriangleMesh> read_obj_mesh(const std::filesystem::path& path, Real scale,
                                                   const Vec<3>& offset,
                                                   const std::string& scene_file,
                                                   const std::string& field) {
+    std::string text;
+    try {
+        text = read_input_file(path, mesh_file_limit);
+    } catch (const FileReadError& e) {
+        throw InputError(scene_file, field,
+                         fmt::format("\"{}\": cannot read the mesh file: {}", path.string(),
+                                     e.reason));
+    }
+    return parse_obj_mesh(text, path, scale, offset, scene_file, field);
+}
+
+std::shared_ptr<const TriangleMesh> parse_obj_mesh(std::string_view text,
+                                                   const std::filesystem::path& path, Real scale,
+                                                   const Vec<3>& offset,
+                                                   const std::string& scene_file,
+                                                   const std::string& field) {
     auto fail = [&](const std::string& why) {
         throw InputError(scene_file, field, fmt::format("\"{}\": {}", path.string(), why));
     };
-    std::error_code ec;
-    std::ifstream in(path, std::ios::binary);
-    if (!in || std::filesystem::is_directory(path, ec))
-        fail("cannot read the mesh file (missing or unreadable)");
-    std::stringstream text;
-    text << in.rdbuf();
+    check_obj_lines(text, scale, offset, fail);
 
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
     tinyobj::ObjReader reader;
     // From memory with no material text: an `mtllib` line opens nothing.
-    if (!reader.ParseFromString(text.str(), "", config))
+    if (!reader.ParseFromString(std::string(text), "", config))
         fail(fmt::format("not a readable OBJ file ({})", reader.Error()));
 
     const std::vector<tinyobj::real_t>& coordinates = reader.GetAttrib().vertices;

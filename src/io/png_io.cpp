@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fmt/format.h>
 #include <libdeflate.h>
 #include <memory>
 #include <string>
@@ -107,35 +108,43 @@ void write_png(const fs::path& path, const Image& image) {
     write_file_atomically(path, png);
 }
 
-namespace {
-
-// The reasons come from errno: "No such file or directory", "Is a directory".
-std::string read_whole_file(const fs::path& path) {
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file{std::fopen(path.c_str(), "rb"),
-                                                               std::fclose};
-    if (!file)
-        throw ImageReadError(path, std::strerror(errno));
+Image read_png(const fs::path& path) {
     std::string bytes;
-    char buffer[1 << 16];
-    while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, file.get()))
-        bytes.append(buffer, n);
-    if (std::ferror(file.get()))
-        throw ImageReadError(path, std::strerror(errno));
-    return bytes;
+    try {
+        bytes = read_input_file(path, png_file_limit);
+    } catch (const FileReadError& e) {
+        throw ImageReadError(path, e.reason);
+    }
+    return decode_png(bytes, path);
 }
 
-} // namespace
-
-Image read_png(const fs::path& path) {
-    const std::string bytes = read_whole_file(path);
+Image decode_png(std::string_view bytes, const fs::path& path) {
     // stb counts the file's bytes in an int.
     if (bytes.size() > std::size_t(INT_MAX))
         throw ImageReadError(path, "file too large");
-
+    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+    // The header's size first, from the IHDR chunk that must follow the
+    // signature: a few bytes can claim an image of gigabytes.
+    if (bytes.size() >= 24 && bytes.substr(0, 8) == "\x89PNG\r\n\x1a\n" &&
+        bytes.substr(12, 4) == "IHDR") {
+        const auto big_endian = [&](std::size_t at) {
+            std::uint32_t v = 0;
+            for (std::size_t k = 0; k < 4; ++k)
+                v = v << 8 | std::uint8_t(bytes[at + k]);
+            return v;
+        };
+        const std::uint32_t claimed_width = big_endian(16), claimed_height = big_endian(20);
+        if (claimed_width > std::uint32_t(max_png_side) ||
+            claimed_height > std::uint32_t(max_png_side) ||
+            double(claimed_width) * double(claimed_height) > double(max_png_pixels))
+            throw ImageReadError(path, fmt::format("the image is {}x{}; sphclip reads PNGs of at "
+                                                   "most {} pixels a side and {} pixels in all",
+                                                   claimed_width, claimed_height, max_png_side,
+                                                   max_png_pixels));
+    }
     int width = 0, height = 0, channels_in_file = 0;
     const std::unique_ptr<stbi_uc, void (*)(void*)> pixels{
-        stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()),
-                              &width, &height, &channels_in_file, 4),
+        stbi_load_from_memory(data, int(bytes.size()), &width, &height, &channels_in_file, 4),
         stbi_image_free};
     if (!pixels) {
         const char* reason = stbi_failure_reason();

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <thread>
 
 namespace sph {
@@ -32,9 +33,18 @@ struct ImageReadError : std::runtime_error {
           path(std::move(path_)), reason(std::move(reason_)) {}
 };
 
+// The largest PNG read: a side of 16384 pixels (the largest render.size),
+// and 64 Mi pixels (256 MiB as RGBA) in all. Checked from the header before
+// decoding; the file itself is at most png_file_limit (io/files.hpp).
+inline constexpr int max_png_side = 16384;
+inline constexpr long long max_png_pixels = 64LL << 20;
+
 // Reads any PNG (grey, palette, 16-bit: converted) as 8-bit RGBA; alpha is
-// 255 where the file has none. Throws ImageReadError.
+// 255 where the file has none. Only a regular file within png_file_limit is
+// read. Throws ImageReadError.
 Image read_png(const std::filesystem::path& path);
+// The same from the file's bytes; `path` names it in errors.
+Image decode_png(std::string_view bytes, const std::filesystem::path& path);
 
 // Writes PNGs on a thread of its own, in the order submitted, so that encoding
 // overlaps the next frame's simulation and rendering. At most `capacity`

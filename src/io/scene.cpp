@@ -1,5 +1,6 @@
 #include "io/scene.hpp"
 
+#include "io/files.hpp"
 #include "io/input_error.hpp"
 #include "io/obj_mesh.hpp"
 #include "io/scene_paths.hpp"
@@ -1337,13 +1338,13 @@ Scene parse_scene(const std::string& text, const std::string& file_label,
 }
 
 Scene load_scene(const std::filesystem::path& file, const std::vector<Override>& overrides) {
-    std::ifstream in(file, std::ios::binary);
-    std::error_code ec;
-    if (!in || std::filesystem::is_directory(file, ec))
-        throw InputError(file.string(), "", "cannot read the scene file (missing or unreadable)");
-    std::stringstream text;
-    text << in.rdbuf();
-    Scene s = parse_scene(text.str(), file.string(), overrides);
+    std::string text;
+    try {
+        text = read_input_file(file, scene_file_limit);
+    } catch (const FileReadError& e) {
+        throw InputError(file.string(), "", "cannot read the scene file: " + e.reason);
+    }
+    Scene s = parse_scene(text, file.string(), overrides);
     s.name = file.stem().string();
     return s;
 }

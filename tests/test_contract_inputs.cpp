@@ -1,0 +1,212 @@
+// The input contract (docs: "Input limits"): sphclip reads only regular
+// files, each kind within its size limit, says which file and which limit
+// when it refuses one, and never writes over a file it reads.
+
+#include "io/files.hpp"
+#include "io/input_error.hpp"
+#include "io/obj_mesh.hpp"
+#include "io/png_io.hpp"
+#include "support/run_sphclip.hpp"
+#include "support/temp_folder.hpp"
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <fmt/format.h>
+#include <string>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using sph::test::read_text;
+using sph::test::run_sphclip;
+using sph::test::TempFolder;
+using sph::test::write_text;
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// The reason read_input_file gives for `path`, or "" when it reads it.
+std::string refusal(const fs::path& path, const sph::InputLimit& limit) {
+    try {
+        sph::read_input_file(path, limit);
+        return "";
+    } catch (const sph::FileReadError& e) {
+        return e.reason;
+    }
+}
+
+// A 2x2 PNG whose header then claims `width` x `height`.
+std::string png_claiming(std::uint32_t width, std::uint32_t height, const TempFolder& tmp) {
+    sph::Image small(2, 2);
+    std::fill(small.rgba.begin(), small.rgba.end(), std::uint8_t(255));
+    sph::write_png(tmp / "small.png", small);
+    std::string bytes = read_text(tmp / "small.png");
+    // IHDR's width and height follow the 8-byte signature, the chunk's length and type.
+    for (int k = 0; k < 4; ++k) {
+        bytes[16 + k] = char((width >> (24 - 8 * k)) & 0xff);
+        bytes[20 + k] = char((height >> (24 - 8 * k)) & 0xff);
+    }
+    return bytes;
+}
+
+} // namespace
+
+TEST_CASE("inputs: only regular files are read, whatever the path looks like", "[contract][inputs]") {
+    TempFolder tmp;
+    const sph::InputLimit limit{"test file", 1000};
+    write_text(tmp / "ok.txt", "hello");
+    CHECK(sph::read_input_file(tmp / "ok.txt", limit) == "hello");
+    // A symlink to a regular file is that file.
+    fs::create_symlink(tmp / "ok.txt", tmp / "link.txt");
+    CHECK(sph::read_input_file(tmp / "link.txt", limit) == "hello");
+
+    // A device that never ends, directly or through a symlink, is refused
+    // before one byte is read.
+    CHECK(contains(refusal("/dev/zero", limit), "not a regular file"));
+    fs::create_symlink("/dev/zero", tmp / "zero.txt");
+    CHECK(contains(refusal(tmp / "zero.txt", limit), "not a regular file"));
+    // A FIFO with no writer: refused at once, not waited on.
+    REQUIRE(::mkfifo((tmp / "fifo").c_str(), 0600) == 0);
+    const auto start = std::chrono::steady_clock::now();
+    CHECK(contains(refusal(tmp / "fifo", limit), "not a regular file"));
+    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(5));
+    CHECK(contains(refusal(tmp.path(), limit), "folder"));
+    CHECK(contains(refusal(tmp / "missing", limit), "No such file"));
+
+    // Past the limit: the message names the size and the kind's limit.
+    write_text(tmp / "big.txt", std::string(1001, 'x'));
+    const std::string big = refusal(tmp / "big.txt", limit);
+    CHECK(contains(big, "the file is 1001 bytes"));
+    CHECK(contains(big, "a test file is at most 1000 bytes"));
+    write_text(tmp / "edge.txt", std::string(1000, 'x'));
+    CHECK(sph::read_input_file(tmp / "edge.txt", limit).size() == 1000);
+}
+
+TEST_CASE("inputs: each kind has its documented limit", "[contract][inputs]") {
+    CHECK(sph::scene_file_limit.bytes == 16u << 20);
+    CHECK(sph::mesh_file_limit.bytes == 512u << 20);
+    CHECK(sph::png_file_limit.bytes == 256u << 20);
+    CHECK(sph::format_bytes(double(sph::scene_file_limit.bytes)) == "16 MiB");
+    CHECK(sph::format_bytes(1.5 * (1 << 30)) == "1.5 GiB");
+}
+
+TEST_CASE("inputs: a scene that is a device is refused with exit 2, naming the file",
+          "[contract][inputs]") {
+    TempFolder tmp;
+    fs::create_symlink("/dev/zero", tmp / "scene.json");
+    for (const std::string& scene : {std::string("/dev/zero"), (tmp / "scene.json").string()}) {
+        const auto result = run_sphclip(tmp, {"run", scene, "--out", (tmp / "out").string()});
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, scene + ": cannot read the scene file: not a regular file"));
+        CHECK_FALSE(fs::exists(tmp / "out"));
+    }
+}
+
+TEST_CASE("inputs: a PNG that is a device or claims a huge size is refused before decoding",
+          "[contract][inputs]") {
+    TempFolder tmp;
+    try {
+        sph::read_png("/dev/zero");
+        FAIL("read /dev/zero as a PNG");
+    } catch (const sph::ImageReadError& e) {
+        CHECK(contains(e.reason, "not a regular file"));
+    }
+    // 100,000 x 100,000 from a file of a few dozen bytes.
+    const std::string lie = png_claiming(100000, 100000, tmp);
+    try {
+        sph::decode_png(lie, "lie.png");
+        FAIL("decoded a PNG claiming 100000x100000");
+    } catch (const sph::ImageReadError& e) {
+        CHECK(contains(e.reason, "the image is 100000x100000"));
+        CHECK(contains(e.reason, "at most 16384 pixels a side"));
+    }
+    // Within a side but too many pixels in all.
+    CHECK_THROWS_AS(sph::decode_png(png_claiming(16384, 16384, tmp), "many.png"),
+                    sph::ImageReadError);
+    // compare says which file.
+    write_text(tmp / "lie.png", lie);
+    const auto result =
+        run_sphclip(tmp, {"compare", (tmp / "lie.png").string(), (tmp / "lie.png").string()});
+    CHECK(result.exit_code == 2);
+    CHECK(contains(result.output, (tmp / "lie.png").string()));
+    CHECK(contains(result.output, "100000x100000"));
+}
+
+TEST_CASE("inputs: compare refuses a --diff that is one of its inputs, by inode",
+          "[contract][inputs]") {
+    TempFolder tmp;
+    sph::Image a(8, 8), b(8, 8);
+    std::fill(a.rgba.begin(), a.rgba.end(), std::uint8_t(255));
+    std::fill(b.rgba.begin(), b.rgba.end(), std::uint8_t(255));
+    b.rgba[0] = 0;
+    sph::write_png(tmp / "ref.png", a);
+    sph::write_png(tmp / "test.png", b);
+    const std::string ref_bytes = read_text(tmp / "ref.png");
+    const std::string test_bytes = read_text(tmp / "test.png");
+    fs::create_symlink(tmp / "test.png", tmp / "test_link.png");
+    fs::create_hard_link(tmp / "ref.png", tmp / "ref_hard.png");
+
+    const std::string ref = (tmp / "ref.png").string(), test = (tmp / "test.png").string();
+    for (const auto& [diff, role] :
+         {std::pair{test, "test image"},
+          {ref, "reference"},
+          {(tmp / "test_link.png").string(), "test image"},
+          {(tmp / "ref_hard.png").string(), "reference"},
+          {(tmp.path() / "." / "test.png").string(), "test image"}}) {
+        INFO(diff);
+        const auto result = run_sphclip(tmp, {"compare", ref, test, "--diff", diff});
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "--diff"));
+        CHECK(contains(result.output, fmt::format("is the {}", role)));
+        CHECK(read_text(tmp / "ref.png") == ref_bytes);
+        CHECK(read_text(tmp / "test.png") == test_bytes);
+    }
+    // Any other path is written as before.
+    const auto result =
+        run_sphclip(tmp, {"compare", ref, test, "--diff", (tmp / "diff.png").string()});
+    CHECK(result.exit_code == 1);
+    CHECK(fs::exists(tmp / "diff.png"));
+}
+
+TEST_CASE("inputs: an OBJ mesh that is a device, has a bad vertex or a huge face is refused "
+          "naming the line",
+          "[contract][inputs]") {
+    TempFolder tmp;
+    const auto refusal_of = [&](const std::string& text) {
+        try {
+            sph::parse_obj_mesh(text, "m.obj", 1, sph::Vec<3>(0), "scene.json",
+                                "effects.obstacles[0].file");
+            return std::string();
+        } catch (const sph::InputError& e) {
+            CHECK(e.file == "scene.json");
+            CHECK(e.field == "effects.obstacles[0].file");
+            return e.problem;
+        }
+    };
+    const std::string tetrahedron_faces = "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+    CHECK(refusal_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n" + tetrahedron_faces).empty());
+    CHECK(contains(refusal_of("v 0 0 0\nv nan 0 0\nv 0 1 0\nv 0 0 1\n" + tetrahedron_faces),
+                   "line 2: vertex coordinate \"nan\" is not a finite number"));
+    CHECK(contains(refusal_of("v 0 0 0\nv 1 0 0\nv 0 1e300 0\nv 0 0 1\n" + tetrahedron_faces),
+                   "line 3: vertex coordinate \"1e300\" is 1e+300 m from the origin"));
+    // A face of 200,000 corners is refused at once (tinyobjloader's ear
+    // clipping took minutes on it).
+    std::string huge = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf";
+    for (int k = 0; k < 200000; ++k)
+        huge += fmt::format(" {}", 1 + k % 4);
+    huge += "\n";
+    CHECK(contains(refusal_of(huge), "line 5: a face of more than 256 corners"));
+
+    // Through the file reader: a symlink to /dev/zero.
+    fs::create_symlink("/dev/zero", tmp / "zero.obj");
+    try {
+        sph::read_obj_mesh(tmp / "zero.obj", 1, sph::Vec<3>(0), "scene.json", "mesh");
+        FAIL("read /dev/zero as a mesh");
+    } catch (const sph::InputError& e) {
+        CHECK(contains(e.problem, "cannot read the mesh file: not a regular file"));
+    }
+}

@@ -13,10 +13,13 @@ class App;
 namespace sph {
 
 struct CompareCliOptions {
-    std::string reference;     // REF.png
-    std::string test;          // TEST.png
-    CompareOptions thresholds; // --tolerance, --threshold, --max-different
-    std::string diff;          // --diff: where to write the difference image; empty: nowhere
+    std::string reference;     // REF.png, or a folder of references
+    std::string test;          // TEST.png, or a folder of images to check
+    CompareOptions thresholds; // --tolerance, --threshold, --max-different, --max-pixels
+    std::string diff;          // --diff: where to write the difference image (a folder in
+                               // folder mode); empty: nowhere
+    bool json = false;         // --json: the report as JSON on stdout instead of text
+    bool update = false;       // --update: copy TEST over REF where they differ
 };
 
 // Adds the `compare` subcommand to `app`; parsing fills `options`.
@@ -24,7 +27,9 @@ CLI::App* add_compare_command(CLI::App& app, CompareCliOptions& options);
 
 // Prints the metrics on stdout and returns the exit code: 0 when the images
 // match, 1 when they differ. Throws InputError for an unreadable image,
-// images of different sizes, or a --diff that cannot be written.
+// images of different sizes, or a --diff that cannot be written. With two
+// folders, compares the PNGs they share by name and reports the rest
+// (docs: "Image checks in CI").
 int compare_command(const CompareCliOptions& options);
 
 } // namespace sph

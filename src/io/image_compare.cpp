@@ -1,21 +1,24 @@
 #include "io/image_compare.hpp"
 
+#include "sph/assert.hpp"
+
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace sph {
 
 namespace {
 
 void require_same_size(const Image& reference, const Image& test) {
-    assert(reference.rgba.size() == std::size_t(reference.width) * reference.height * 4);
-    assert(test.rgba.size() == std::size_t(test.width) * test.height * 4);
+    SPHCLIP_ASSERT(reference.rgba.size() == std::size_t(reference.width) * reference.height * 4);
+    SPHCLIP_ASSERT(test.rgba.size() == std::size_t(test.width) * test.height * 4);
     if (reference.width != test.width || reference.height != test.height)
         throw std::invalid_argument("the images differ in size: reference " +
                                     std::to_string(reference.width) + "x" +
@@ -31,6 +34,56 @@ int channel_difference(const Image& reference, const Image& test, std::size_t i)
     return largest;
 }
 
+// The size of the largest group of 8-connected pixels among `pixels`
+// (indices in row order, ascending), by union-find over the neighbours
+// already seen: left, and the three above.
+std::uint64_t largest_cluster(const std::vector<std::uint32_t>& pixels, int width) {
+    std::vector<std::uint32_t> parent(pixels.size());
+    std::vector<std::uint64_t> size(pixels.size(), 1);
+    for (std::size_t k = 0; k < parent.size(); ++k)
+        parent[k] = std::uint32_t(k);
+    const auto root = [&](std::uint32_t k) {
+        while (parent[k] != k)
+            k = parent[k] = parent[parent[k]];
+        return k;
+    };
+    const auto join = [&](std::uint32_t a, std::uint32_t b) {
+        a = root(a);
+        b = root(b);
+        if (a == b)
+            return;
+        if (size[a] < size[b])
+            std::swap(a, b);
+        parent[b] = a;
+        size[a] += size[b];
+    };
+    const auto index_of = [&](std::int64_t pixel) -> std::optional<std::uint32_t> {
+        const auto it = std::lower_bound(pixels.begin(), pixels.end(), pixel,
+                                         [](std::uint32_t p, std::int64_t v) { return p < v; });
+        if (it == pixels.end() || std::int64_t(*it) != pixel)
+            return std::nullopt;
+        return std::uint32_t(it - pixels.begin());
+    };
+    for (std::size_t k = 0; k < pixels.size(); ++k) {
+        const std::int64_t p = pixels[k];
+        const std::int64_t x = p % width;
+        for (const std::int64_t dx : {-1, 0, 1}) {
+            if (x + dx < 0 || x + dx >= width)
+                continue;
+            if (const auto above = index_of(p - width + dx))
+                join(std::uint32_t(k), *above);
+        }
+        if (x > 0)
+            if (const auto left = index_of(p - 1))
+                join(std::uint32_t(k), *left);
+    }
+    std::uint64_t largest = 0;
+    for (std::size_t k = 0; k < pixels.size(); ++k)
+        if (parent[k] == k)
+            largest = std::max(largest, size[k]);
+    return largest;
+}
+
 } // namespace
 
 CompareResult compare_images(const Image& reference, const Image& test,
@@ -39,6 +92,7 @@ CompareResult compare_images(const Image& reference, const Image& test,
     // Integer sums are exact: 255^2 x 3 channels x 2^31 pixels fits in 64 bits.
     std::uint64_t sum = 0, sum_of_squares = 0, different = 0;
     int largest = 0;
+    std::vector<std::uint32_t> differing; // pixel indices, in row order
     for (std::size_t i = 0; i < reference.rgba.size(); i += 4) {
         int pixel_largest = 0;
         for (std::size_t c = 0; c < 3; ++c) {
@@ -47,11 +101,26 @@ CompareResult compare_images(const Image& reference, const Image& test,
             sum_of_squares += std::uint64_t(d * d);
             pixel_largest = std::max(pixel_largest, d);
         }
-        different += pixel_largest > options.pixel_threshold;
+        if (pixel_largest > options.pixel_threshold) {
+            ++different;
+            differing.push_back(std::uint32_t(i / 4));
+        }
         largest = std::max(largest, pixel_largest);
     }
 
     CompareResult result;
+    result.different_pixels = different;
+    if (!differing.empty()) {
+        PixelBox box{reference.width, reference.height, -1, -1};
+        for (const std::uint32_t p : differing) {
+            const int x = int(p % std::uint32_t(reference.width));
+            const int y = int(p / std::uint32_t(reference.width));
+            box = {std::min(box.x_min, x), std::min(box.y_min, y), std::max(box.x_max, x),
+                   std::max(box.y_max, y)};
+        }
+        result.different_box = box;
+        result.largest_cluster = largest_cluster(differing, reference.width);
+    }
     const std::size_t pixels = reference.rgba.size() / 4;
     if (pixels > 0) {
         const double samples = 3.0 * double(pixels);
@@ -66,7 +135,8 @@ CompareResult compare_images(const Image& reference, const Image& test,
     }
     result.max_difference = largest;
     result.match = result.mean_difference <= options.max_mean_difference &&
-                   result.different_percent <= options.max_different_percent;
+                   result.different_percent <= options.max_different_percent &&
+                   result.different_pixels <= options.max_different_pixels;
     return result;
 }
 

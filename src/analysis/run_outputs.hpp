@@ -1,5 +1,5 @@
 #pragma once
-// What a finished `sphclip run` left in its folder (README, "Outputs"), read
+// What a finished `sphclip run` left in its folder (docs/outputs.md), read
 // back for validation and studies: run.json and stats.csv, by key and column
 // name.
 

@@ -1,6 +1,6 @@
 #pragma once
 // `sphclip compare REF.png TEST.png`: checks a rendered image against a
-// reference one within tolerances (README, "compare").
+// reference one within tolerances (README, "Using sphclip compare in CI").
 
 #include "io/image_compare.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 // `sphclip study SCENE --vary KEY=V1,V2...`: runs a scene for every
 // combination of the varied values and weighs accuracy against cost
-// (README, "study").
+// (docs/validation.md, "Studies").
 
 #include <string>
 #include <vector>

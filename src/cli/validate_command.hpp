@@ -1,6 +1,6 @@
 #pragma once
 // `sphclip validate [CASE...]`: runs shipped scenes whose outcome is known and
-// scores them (README, "validate").
+// scores them (docs/validation.md).
 
 #include <string>
 #include <vector>

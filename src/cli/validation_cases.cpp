@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Tolerances of the verdict (README, "validate"): loose bands, chosen rather
+// Tolerances of the verdict (docs/validation.md, "How the cases are scored"): loose bands, chosen rather
 // than derived. The dam break: mean |dZ| within 0.25, about 6% of the table's
 // last Z (4.1). The tank: layer-mean pressure within 5% RMS of the bottom
 // pressure, and nothing faster than 1% of sqrt(g H), the speed of a long wave

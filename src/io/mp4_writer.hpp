@@ -35,8 +35,8 @@ struct Mp4Options {
     // Debian's libx264 0.164 then reads uninitialised memory on some inputs
     // (small frames, e.g. 320x180), so the same frames could encode to
     // different bytes from one encoder to the next in one process; off, the
-    // bytes depend only on the frames and these settings (README, "What
-    // encoding costs", measures the price).
+    // bytes depend only on the frames and these settings (docs/rendering.md, "What
+    // encoding costs", gives the price).
     bool mb_tree = false;
 };
 

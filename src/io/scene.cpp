@@ -484,7 +484,7 @@ std::string override_path(const std::string& key) {
     return std::regex_replace(key, index, "[$1]");
 }
 
-// The limits a scene is checked against (README, "Scene files").
+// The limits a scene is checked against (docs/scenes.md, "Fluid blocks").
 const std::filesystem::path output_root = "out";
 constexpr double max_frames = 1e7;
 constexpr double max_support = 20;      // h in spacings
@@ -1420,7 +1420,7 @@ Derived derive(const Scene& s) {
     d.kernel = derive_kernel(s);
     // auto: single in 2D where it can run. In 3D the 27 cells around a
     // cell hold six candidates per neighbour, and single measured even with
-    // double for 27% more memory (README, "Single precision").
+    // double for 27% more memory (docs/solvers.md, "Single precision").
     d.precision = s.solver.precision != "auto" ? s.solver.precision
                   : dim == 2 && single_precision_obstacle(s, d.kernel).empty() ? "single"
                                                                                 : "double";

@@ -88,7 +88,7 @@ struct Scene {
     struct Material {
         double rest_density = 1000; // kg/m^3
         double bulk_modulus = 2e5;  // Pa
-        double viscosity = 1.0;     // Pa.s (damps the seed model; see README)
+        double viscosity = 1.0;     // Pa.s (damps the seed model; docs/model.md)
     } material;
 
     struct Solver {
@@ -164,7 +164,7 @@ struct Scene {
     } output;
 };
 
-// Values derived from the scene (documented in the README).
+// Values derived from the scene (docs/scenes.md, "Derived quantities").
 struct Derived {
     double h = 0;    // m, support radius
     double mass = 0; // kg

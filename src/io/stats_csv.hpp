@@ -1,5 +1,5 @@
 #pragma once
-// stats.csv: one row per frame (README, "Outputs"). Rows are flushed as they
+// stats.csv: one row per frame (docs/outputs.md). Rows are flushed as they
 // are written, so a run that stops early keeps every frame so far.
 
 #include "io/frame_sink.hpp"

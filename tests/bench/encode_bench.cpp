@@ -3,7 +3,8 @@
 // preset and x264 thread count, on the frames of the built-in scene (the 2D
 // dam break, simulated and rendered once, then encoded again and again). A
 // program that prints a table, not a timed test; the run's defaults come
-// from its results (README, "What encoding costs").
+// from its results (docs/rendering.md, "What encoding costs"; the tables
+// are in docs/benchmarks.md).
 //
 //   build/sphclip_bench_encode                      # the full table
 //   build/sphclip_bench_encode --repeat 5 --csv F   # also written to F

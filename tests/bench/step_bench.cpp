@@ -26,7 +26,7 @@
 // (the state and neighbour-list arrays; the rise of the peak resident set
 // over the resident set before the set-up) and the peak resident set, and
 // whether the 2-thread run ends on the same state hash as the 1-thread run.
-// A program that prints a table, not a timed test (README, "Benchmarks").
+// A program that prints a table, not a timed test (docs/benchmarks.md).
 //
 //   sphclip_bench_step [--quick|--tiny] [--sizes 10000,100000] [--solvers seed,wcsph]
 //                      [--dims 2,3] [--threads 1,2] [--steps N] [--search hash,sorted_grid]
@@ -61,7 +61,7 @@ namespace {
 constexpr double spacing = 1e-3; // m
 constexpr double dt = 2e-5;      // s
 // DualSPHysics 5.0, its 2D dam-break validation case, 2 threads on this
-// machine (README, "Full step").
+// machine (docs/benchmarks.md, "Against DualSPHysics").
 constexpr double dualsphysics_rate = 0.6e6; // particle-steps/s
 
 std::vector<std::string> split(const std::string& text) {

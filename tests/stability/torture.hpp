@@ -1,8 +1,8 @@
 #pragma once
-// The torture suite (README, "Stability"): hard scenes under tests/stability/,
+// The torture suite (docs/stability.md): hard scenes under tests/stability/,
 // each run with every solver and checked against invariants after every frame.
 // The Catch2 tests assert on the results; sphclip_torture prints them as the
-// README's table.
+// table of docs/stability.md.
 
 #include <cstdint>
 #include <filesystem>
@@ -33,7 +33,7 @@ struct Case {
     std::vector<std::string> may_stop = {};
 };
 
-// Every case, in the README's order.
+// Every case, in the order of docs/stability.md's table.
 const std::vector<Case>& cases();
 
 struct Result {

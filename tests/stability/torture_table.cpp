@@ -1,5 +1,5 @@
 // sphclip_torture: runs the torture suite (every case under tests/stability/,
-// every solver) and prints the README's table. The same runs are the
+// every solver) and prints the table of docs/stability.md. The same runs are the
 // [stability] tests; this program only reports them.
 //   sphclip_torture [--csv FILE] [CASE.json ...]
 

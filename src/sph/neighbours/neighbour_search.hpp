@@ -32,7 +32,7 @@ class NeighbourSearch {
     }
 };
 
-// Names accepted by make_neighbour_search, in the order the README lists them.
+// Names accepted by make_neighbour_search, in the order docs/scene-keys.md lists them.
 std::vector<std::string> neighbour_search_names();
 
 template <int D>

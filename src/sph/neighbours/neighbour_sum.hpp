@@ -4,7 +4,7 @@
 // vector lane, which a plain loop's fixed left-to-right order forbids. The
 // order of the additions is then set by the row and the compiled vector
 // width only, so a run still gives the same bits with any thread count
-// (-fopt-info-vec lists these loops as vectorised; README "Full step").
+// (-fopt-info-vec lists these loops as vectorised; docs/benchmarks.md, "Which loops vectorise").
 //
 // The term is a Real or a Vec<D>; it must be a pure function of its
 // arguments, without a branch that calls out of line (a select, `c ? a : b`,

@@ -1,6 +1,6 @@
 #pragma once
 // The weakly compressible solver's density and pressure passes in single
-// precision, a grid cell at a time: `solver.precision` "single" (README,
+// precision, a grid cell at a time: `solver.precision` "single" (docs/solvers.md,
 // "Single precision").
 //
 // Why cells and not neighbour lists: a list costs a gather per pair in each

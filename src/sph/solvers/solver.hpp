@@ -104,7 +104,7 @@ class Solver {
     virtual void permute(std::span<const std::uint32_t> /*order*/) {}
 };
 
-// Names accepted by make_solver (`solver.name`), in the order the README lists them.
+// Names accepted by make_solver (`solver.name`), in the order docs/scene-keys.md lists them.
 std::vector<std::string> solver_names();
 
 template <int D>

@@ -178,8 +178,8 @@ void check_run_outputs(const fs::path& out, int dimension, std::size_t particles
     CHECK(stats.number(0, "steps") == 0);
 
     // Particle exports: a CSV and a VTK file per frame, and the time series.
-    const std::string csv_header =
-        dimension == 2 ? "x,y,vx,vy,density,pressure" : "x,y,z,vx,vy,vz,density,pressure";
+    const std::string csv_header = dimension == 2 ? "x,y,vx,vy,density,pressure,id,time"
+                                                  : "x,y,z,vx,vy,vz,density,pressure,id,time";
     std::set<fs::path> expected{out / "stats.csv", out / "run.json", out / "particles.pvd",
                                 out / "particles"};
     const std::string pvd = read_text(out / "particles.pvd");
@@ -189,10 +189,18 @@ void check_run_outputs(const fs::path& out, int dimension, std::size_t particles
         const Csv frame = read_csv(out / "particles" / (stem + ".csv"));
         CHECK(frame.header == csv_header);
         CHECK(frame.rows.size() == particles);
-        for (const auto& row : frame.rows)
-            REQUIRE(row.size() == std::size_t(2 * dimension + 2));
+        std::set<std::string> ids;
+        for (const auto& row : frame.rows) {
+            REQUIRE(row.size() == std::size_t(2 * dimension + 4));
+            ids.insert(row[std::size_t(2 * dimension + 2)]);
+            // Every row carries the frame's time, as stats.csv has it.
+            CHECK(std::stod(row.back()) == Approx(stats.number(k, "time")).margin(1e-8));
+        }
+        CHECK(ids.size() == particles); // one row per particle
         const std::string vtp = read_text(out / "particles" / (stem + ".vtp"));
         CHECK(contains(vtp, fmt::format("NumberOfPoints=\"{}\"", particles)));
+        CHECK(contains(vtp, "compressor=\"vtkZLibDataCompressor\""));
+        CHECK(contains(vtp, "<AppendedData encoding=\"raw\">"));
         CHECK(contains(vtp, "</VTKFile>"));
         CHECK(contains(pvd, fmt::format("file=\"particles/{}.vtp\"", stem)));
         expected.insert(out / "particles" / (stem + ".csv"));

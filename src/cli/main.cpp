@@ -63,8 +63,9 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     run_cmd->add_option("--fps", fps, "Frames per second (same as --set fps=N)")
         ->check(CLI::PositiveNumber);
-    run_cmd->add_option("--export", run.exports, "Particle data per frame: csv and/or vtk")
-        ->check(CLI::IsMember({"csv", "vtk"}))
+    run_cmd->add_option("--export", run.exports,
+                        "Particle data per frame: csv, vtk (binary, compressed) or vtk-ascii")
+        ->check(CLI::IsMember({"csv", "vtk", "vtk-ascii"}))
         ->allow_extra_args(false);
     run_cmd->add_flag("--no-png", no_png, "Write no PNG frames");
     run_cmd->add_flag("--no-mp4", no_mp4, "Write no MP4 video");

@@ -136,8 +136,10 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
         fs::create_directories(folder / "particles");
         if (format == "csv")
             sinks.push_back(std::make_unique<ParticleCsv>(folder));
-        else if (format == "vtk")
-            sinks.push_back(std::make_unique<ParticleVtk>(folder));
+        else if (format == "vtk" || format == "vtk-ascii")
+            sinks.push_back(std::make_unique<ParticleVtk>(
+                folder, format == "vtk" ? ParticleVtk::Encoding::binary
+                                        : ParticleVtk::Encoding::ascii));
     }
     if (render_sink)
         sinks.push_back(std::move(render_sink));

@@ -15,7 +15,7 @@ struct RunOptions {
     std::optional<std::filesystem::path> out;   // none: out/<scene name>/
     std::vector<Override> overrides;            // --set, then --duration, --fps
     int threads = 0;                            // 0: all cores
-    std::vector<std::string> exports;           // "csv", "vtk"
+    std::vector<std::string> exports;           // "csv", "vtk", "vtk-ascii"
     bool png = true;
     bool mp4 = true;
     bool quiet = false;

@@ -1,9 +1,12 @@
 #pragma once
-// Per-frame particle data for analysis tools (`--export csv|vtk`):
-//   csv: particles/frame_NNNNN.csv, header x,y[,z],vx,vy[,vz],density,pressure
+// Per-frame particle data for analysis tools (`--export csv|vtk|vtk-ascii`):
+//   csv: particles/frame_NNNNN.csv, header
+//        x,y[,z],vx,vy[,vz],density,pressure,id,time (SI units, docs/outputs.md)
 //   vtk: particles/frame_NNNNN.vtp (VTK XML PolyData) and particles.pvd, the
 //        time series ParaView opens; the .pvd is rewritten after every frame so
-//        it is valid whenever the run stops.
+//        it is valid whenever the run stops. Binary by default: every array
+//        in one appended block, zlib-compressed (VTK's vtkZLibDataCompressor
+//        layout); vtk-ascii writes the same arrays as text.
 
 #include "io/frame_sink.hpp"
 
@@ -26,13 +29,16 @@ class ParticleCsv final : public FrameSink {
 
 class ParticleVtk final : public FrameSink {
   public:
+    enum class Encoding { binary, ascii };
     // Frames go to folder/particles/, the collection to folder/particles.pvd.
-    explicit ParticleVtk(std::filesystem::path folder) : folder_(std::move(folder)) {}
+    explicit ParticleVtk(std::filesystem::path folder, Encoding encoding = Encoding::binary)
+        : folder_(std::move(folder)), encoding_(encoding) {}
     void write(const Snapshot& frame) override;
     FrameFields fields() const override { return {.pressure = true}; }
 
   private:
     std::filesystem::path folder_;
+    Encoding encoding_;
     std::vector<std::pair<double, std::string>> written_; // time, relative file
 };
 

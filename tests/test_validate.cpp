@@ -93,13 +93,12 @@ TEST_CASE("surge-front series are interpolated linearly and compared in range", 
     CHECK(std::isnan(sph::compare_surge_front(simulated, {{5, 1}}).mean_abs_dZ));
 }
 
-TEST_CASE("the Martin & Moyce table is read from the shared reference folder", "[validate]") {
-    const fs::path table = fs::path(SPHCLIP_SOURCE_DIR) / ".." / "shared" / "reference" /
-                           "martin_moyce_1952_surge_front_table2.csv";
-    if (!fs::exists(table)) {
-        WARN("no ../shared/reference beside the repository: not checked");
-        return;
-    }
+TEST_CASE("the Martin & Moyce table ships in the repository's data/reference", "[validate]") {
+    const fs::path table =
+        fs::path(SPHCLIP_SOURCE_DIR) / "data" / "reference" / "martin_moyce_1952_surge_front_table2.csv";
+    REQUIRE(fs::exists(table));
+    // Its source is named in its header.
+    CHECK(sph::test::read_text(table).starts_with("# Martin J.C. & Moyce W.J. (1952)"));
     const auto reference = sph::read_surge_reference(table);
     REQUIRE(reference.size() >= 10);
     for (std::size_t i = 1; i < reference.size(); ++i) {
@@ -246,4 +245,23 @@ TEST_CASE("validate: an unstable run exits 3 and is reported", "[validate][cli]"
     const auto summary = read_text_csv(out / "summary.csv");
     REQUIRE(summary.rows.size() == 1);
     CHECK(summary.at(0, "status") == "unstable");
+}
+
+TEST_CASE("validate needs no folder outside the repository, from any current folder",
+          "[validate][cli]") {
+    // From an empty folder: the scenes and the reference table are found
+    // beside the program (build/../scenes, build/../data/reference), not in
+    // a ../shared folder.
+    TempFolder tmp;
+    const fs::path out = tmp / "v";
+    const auto result = run_sphclip(tmp,
+                                    {"validate", "dam_break_2d", "--out", out.string(), "--set",
+                                     "fluid.spacing=0.005", "--set", "duration=0.1"},
+                                    tmp.path());
+    INFO(result.output);
+    REQUIRE(result.exit_code == 0);
+    CHECK(fs::exists(out / "dam_break_2d" / "surge_front_vs_reference.csv"));
+    const auto summary = read_text_csv(out / "summary.csv");
+    REQUIRE(summary.rows.size() == 1);
+    CHECK(std::stod(summary.at(0, "mean_abs_dZ")) >= 0);
 }

@@ -45,12 +45,12 @@ fs::path find_scenes_folder() {
 }
 
 fs::path find_reference_folder() {
-    const fs::path cwd = fs::current_path();
-    std::vector<fs::path> candidates{cwd / ".." / "shared" / "reference",
-                                     cwd / ".." / ".." / "shared" / "reference"};
+    // The repository's data/reference beside scenes/, from the current folder
+    // or from the program's (build/sphclip); then the installed copy.
+    std::vector<fs::path> candidates{fs::current_path() / "data" / "reference"};
     if (const auto exe = program_folder(); !exe.empty()) {
-        candidates.push_back(exe / ".." / ".." / "shared" / "reference");
-        candidates.push_back(exe / ".." / ".." / ".." / "shared" / "reference");
+        candidates.push_back(exe / ".." / "data" / "reference");
+        candidates.push_back(exe / ".." / "share" / "sphclip" / "data" / "reference");
     }
     return first_folder(candidates, "reference data folder", "--reference-dir");
 }

@@ -11,10 +11,11 @@ namespace sph {
 // repository. Throws InputError naming the places tried.
 std::filesystem::path find_scenes_folder();
 
-// The reference tables (../shared/reference beside the repository): tried
-// from the current folder as ../shared/reference and ../../shared/reference,
-// then from the program's folder as ../../shared/reference and
-// ../../../shared/reference. Throws InputError naming the places tried and
+// The reference tables, shipped in the repository's data/reference/ (each
+// file names its source in its header): tried from the current folder as
+// data/reference, then from the program's folder as ../data/reference (the
+// build folder in a clone) and ../share/sphclip/data/reference (an
+// installed program). Throws InputError naming the places tried and
 // --reference-dir.
 std::filesystem::path find_reference_folder();
 

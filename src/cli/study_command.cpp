@@ -214,7 +214,8 @@ CLI::App* add_study_command(CLI::App& app, StudyOptions& options) {
                     "Threads per run (default: all cores, or 1 when --jobs > 1)")
         ->check(CLI::Range(1, 1024));
     cmd->add_option("--reference-dir", options.reference_dir,
-                    "Folder of the reference tables (default: ../shared/reference, searched)");
+                    "Folder of the reference tables (default: the repository's "
+                    "data/reference, searched)");
     return cmd;
 }
 

@@ -106,7 +106,8 @@ CLI::App* add_validate_command(CLI::App& app, ValidateOptions& options) {
     cmd->add_option("--scenes-dir", options.scenes_dir,
                     "Folder of CASE.json (default: ./scenes, else beside the program's folder)");
     cmd->add_option("--reference-dir", options.reference_dir,
-                    "Folder of the reference tables (default: ../shared/reference, searched)");
+                    "Folder of the reference tables (default: the repository's "
+                    "data/reference, searched)");
     return cmd;
 }
 

@@ -39,8 +39,10 @@ fs::path program_folder() {
 
 fs::path find_scenes_folder() {
     std::vector<fs::path> candidates{fs::current_path() / "scenes"};
-    if (const auto exe = program_folder(); !exe.empty())
+    if (const auto exe = program_folder(); !exe.empty()) {
         candidates.push_back(exe / ".." / "scenes");
+        candidates.push_back(exe / ".." / "share" / "sphclip" / "scenes"); // installed
+    }
     return first_folder(candidates, "scenes folder", "--scenes-dir");
 }
 

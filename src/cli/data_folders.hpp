@@ -8,7 +8,9 @@ namespace sph {
 
 // scenes/ in the current folder, else beside the program's folder
 // (build/sphclip -> build/../scenes), the layout of a build in the
-// repository. Throws InputError naming the places tried.
+// repository, else ../share/sphclip/scenes from it (an installed program:
+// /usr/bin/sphclip -> /usr/share/sphclip/scenes). Throws InputError naming
+// the places tried.
 std::filesystem::path find_scenes_folder();
 
 // The reference tables, shipped in the repository's data/reference/ (each

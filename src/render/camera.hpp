@@ -1,9 +1,11 @@
 #pragma once
 // Camera and layout: where the scene, the caption and the colour bar go in
 // the image, and the view and projection that put the scene in its place.
-// The overlay reserves its room first (FrameLayout); the camera fits the
-// scene into what is left. A camera fitted to the particles or animated
-// over the clip is a different CameraPose per frame; nothing else changes.
+// The overlay's room is reserved first (FrameLayout: today fixed shares of
+// the image; an overlay that measures its text, or adds a legend, would
+// reserve more here), and the camera fits the scene into what is left. A
+// camera fitted to the particles or animated over the clip is a different
+// CameraPose per frame (today fixed_pose); nothing else changes.
 
 #include "render/render_settings.hpp"
 

@@ -19,7 +19,8 @@ flat out vec3 v_colour;
 void main() {
     vec3 centre = (u_view * vec4(a_centre, 1.0)).xyz;
     // How far in front of the centre the outline lies: at the front, every
-    // ray-cast depth lies behind the outline's (conservative depth).
+    // ray-cast depth lies behind the outline's (conservative depth, a
+    // variant the render benchmark measures: tests/bench/render_variants.hpp).
 #ifdef CONSERVATIVE_DEPTH
     float front = u_radius;
 #else

@@ -1,6 +1,6 @@
 # Writes OUTPUT, a header with every shader in SHADERS as a string constant
 # named after its file: shaders/sphere_impostor.vert.glsl -> sphere_impostor_vert.
-set(content "#pragma once\n// Generated from shaders/ by src/render/embed_shaders.cmake. Do not edit.\n#include <string_view>\nnamespace sph::shaders {\n")
+set(content "#pragma once\n// Generated from .glsl files by src/render/embed_shaders.cmake. Do not edit.\n#include <string_view>\nnamespace sph::shaders {\n")
 foreach(file ${SHADERS})
     get_filename_component(name ${file} NAME)
     string(REGEX REPLACE "\\.glsl$" "" name ${name})

@@ -6,7 +6,10 @@
 // prints a table, not a timed test. The techniques of one case take turns
 // frame by frame, so a change in the load of a shared machine touches them
 // alike; each row also gives how far its frame is from the plain ray-cast
-// one's (sphclip compare's metrics), as speed must not cost the look.
+// one's (sphclip compare's metrics), as speed must not cost the look. Rows
+// the renderer cannot draw (flat discs, sorting, conservative depth) are
+// drawn by the benchmark's own variants (render_variants.hpp), built from
+// the renderer's parts.
 //
 //   build/sphclip_bench_render                       # the full table
 //   build/sphclip_bench_render --csv FILE            # ... also to FILE, machine noted
@@ -17,6 +20,7 @@
 #include "io/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+#include "render_variants.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
 #include "sph/surface.hpp"
 
@@ -97,12 +101,50 @@ struct Technique {
     bool defaults = false;
 };
 
-// One technique's renderer and the frames it drew.
+// The benchmark's own part of a technique: none for the renderer's.
+DrawVariant variant_of(const Technique& t) {
+    return {.flat_below_px = t.flat_below_px,
+            .flat_as_points = t.flat_as_points,
+            .sort_front_to_back = t.sort,
+            .conservative_depth = t.conservative_depth};
+}
+
+bool is_plain(const DrawVariant& v) {
+    return v.flat_below_px <= 0 && !v.sort_front_to_back && !v.conservative_depth;
+}
+
+// One technique's renderer (the product's, or a variant of it) and the
+// frames it drew.
 struct Row {
     const Technique* technique;
-    std::unique_ptr<FrameRenderer> renderer;
+    DrawVariant variant;
+    std::unique_ptr<FrameRenderer> renderer;           // plain techniques
+    std::unique_ptr<VariantRenderer> variant_renderer; // the others
     std::vector<double> ms, cpu_ms, fill_ms, draw_ms, readback_ms;
     Image image; // the last frame
+
+    Row(const Technique& t, const RenderSettings& r) : technique(&t), variant(variant_of(t)) {
+        if (is_plain(variant))
+            renderer = std::make_unique<FrameRenderer>(r);
+        else
+            variant_renderer = std::make_unique<VariantRenderer>(r, variant);
+    }
+    Image render(const Snapshot& s) {
+        return renderer ? renderer->render(s) : variant_renderer->render(s);
+    }
+    const FrameTimings& timings() const {
+        return renderer ? renderer->last_timings() : variant_renderer->last_timings();
+    }
+    const RenderSettings& settings() const {
+        return renderer ? renderer->settings() : variant_renderer->settings();
+    }
+    std::size_t drawn() const {
+        return renderer ? renderer->last_drawn() : variant_renderer->last_drawn();
+    }
+    std::size_t flat() const { return renderer ? 0 : variant_renderer->last_flat(); }
+    std::size_t outside_view() const {
+        return renderer ? renderer->last_outside_view() : variant_renderer->last_outside_view();
+    }
 };
 
 // How the impostors' outlines are chosen.
@@ -290,10 +332,6 @@ int main(int argc, char** argv) {
                     r.cull_buried = block && t.skip_buried;
                     if (!t.defaults) {
                         r.cull_outside_view = t.cull_view;
-                        r.flat_below_px = t.flat_below_px;
-                        r.flat_as_points = t.flat_as_points;
-                        r.sort_front_to_back = t.sort;
-                        r.conservative_depth = t.conservative_depth;
                         r.triangles_below_px = t.triangles_below_px;
                         r.samples = t.samples;
                     }
@@ -310,27 +348,26 @@ int main(int argc, char** argv) {
                         r.camera_position =
                             glm::dvec3(0.05) + 0.2 * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
                     }
-                    rows.push_back(
-                        {&t, std::make_unique<FrameRenderer>(r), {}, {}, {}, {}, {}, {}});
-                    rows.back().renderer->render(s); // warm-up: shader compilation, buffers
+                    rows.emplace_back(t, r);
+                    rows.back().render(s); // warm-up: shader compilation, buffers
                 }
                 // Round-robin over the techniques, so that a change in the load
                 // of this shared machine touches all of them alike; the median
                 // of each technique's frames.
                 double round_seconds = 0;
                 for (const Row& row : rows)
-                    round_seconds += row.renderer->last_timings().draw_seconds;
+                    round_seconds += row.timings().draw_seconds;
                 const int rounds = tiny ? 1 : round_seconds > 20 ? 3 : 5;
                 for (int round = 0; round < rounds; ++round)
                     for (Row& row : rows) {
                         const auto start = std::chrono::steady_clock::now();
                         const double cpu_start = cpu_ms();
-                        row.image = row.renderer->render(s);
+                        row.image = row.render(s);
                         row.ms.push_back(std::chrono::duration<double, std::milli>(
                                              std::chrono::steady_clock::now() - start)
                                              .count());
                         row.cpu_ms.push_back(cpu_ms() - cpu_start);
-                        const FrameTimings& ft = row.renderer->last_timings();
+                        const FrameTimings& ft = row.timings();
                         row.fill_ms.push_back(ft.fill_seconds * 1e3);
                         row.draw_ms.push_back(ft.draw_seconds * 1e3);
                         row.readback_ms.push_back(ft.readback_seconds * 1e3);
@@ -338,7 +375,8 @@ int main(int argc, char** argv) {
                 const Image& reference = rows.front().image;
                 for (Row& row : rows) {
                     const Technique& t = *row.technique;
-                    const RenderSettings& r = row.renderer->settings();
+                    const RenderSettings& r = row.settings();
+                    const DrawVariant& v = row.variant;
                     std::string versus = ",,";
                     if (&row != &rows.front()) {
                         const CompareResult c =
@@ -346,18 +384,17 @@ int main(int argc, char** argv) {
                         versus = fmt::format("{:.2f},{:.2f},{}", c.mean_difference,
                                              c.different_percent, c.match ? "yes" : "no");
                     }
-                    const bool flat = r.flat_below_px > 0 && r.spheres == "impostor";
+                    const bool flat = v.flat_below_px > 0 && r.spheres == "impostor";
                     const double ms = median(row.ms);
                     emit(fmt::format(
                         "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.2f},{:.1f},"
                         "{:.1f},{:.1f},{:.1f},{}",
                         backend, layout, n, t.name, t.spheres, r.cull_buried ? "yes" : "no",
                         r.cull_outside_view ? "yes" : "no",
-                        flat ? fmt::format("{:g}", r.flat_below_px) : "",
-                        flat ? (r.flat_as_points ? "points" : "quads") : "",
-                        r.sort_front_to_back ? "yes" : "no", outline_name(r), r.samples,
-                        row.renderer->last_drawn(), row.renderer->last_flat(),
-                        row.renderer->last_outside_view(), width, height, ms, 1e3 / ms,
+                        flat ? fmt::format("{:g}", v.flat_below_px) : "",
+                        flat ? (v.flat_as_points ? "points" : "quads") : "",
+                        v.sort_front_to_back ? "yes" : "no", outline_name(r), r.samples,
+                        row.drawn(), row.flat(), row.outside_view(), width, height, ms, 1e3 / ms,
                         median(row.cpu_ms), median(row.fill_ms), median(row.draw_ms),
                         median(row.readback_ms), versus));
                     if (!png_folder.empty()) {

@@ -1,4 +1,4 @@
-// A sphere only a few pixels across (RenderSettings::flat_below_px) as a flat
+// A sphere only a few pixels across (DrawVariant::flat_below_px) as a flat
 // disc facing the eye at the sphere's front, lit as a sphere seen from afar:
 // no ray cast and no depth written, so the rasteriser may test depth before
 // shading. POINTS: one point sprite per sphere; otherwise the impostor's

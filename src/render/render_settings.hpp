@@ -1,0 +1,50 @@
+#pragma once
+// What a frame shows and how it is drawn, filled from the scene's render
+// section: a plain struct with defaults and units (STYLE.md point 10).
+
+#include "io/scene.hpp"
+
+#include <array>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace sph {
+
+struct RenderSettings {
+    int width = 1280, height = 720; // px
+    int dimension = 2;
+    std::string field = "velocity";    // velocity | density | pressure
+    std::string label = "speed (m/s)"; // the colour bar's title
+    std::string colour_map = "viridis";
+    std::array<double, 2> range{0, 1}; // field values at the ends of the map
+    std::string spheres = "impostor";  // impostor | mesh
+    int mesh_subdivisions = 1;         // mesh: 80 triangles per sphere
+    double radius = 0.001;             // m, drawn sphere radius
+    glm::dvec3 domain_min{0}, domain_max{1};
+    std::vector<SceneObstacle> obstacles; // drawn solid (2D) or as wire outlines (3D)
+    // Drawn as boxes (as box obstacles are) where their motion has them at
+    // the frame's time: the motion is known in closed form, so the snapshot
+    // need not carry it.
+    std::vector<Paddle<3>> paddles;
+    glm::dvec3 camera_position{0}, camera_target{0}; // 3D
+    double fov = 40;                                 // degrees, vertical
+    int samples = 4;                                 // multisampling
+    // Skip particles the snapshot marks as buried deep in the fluid (3D).
+    bool cull_buried = false;
+    // Impostors narrower than this (px) are drawn on one triangle around the
+    // sphere's image, wider ones on a square of two: the triangle has 30%
+    // more area but half the triangles, and llvmpipe's cost for small spheres
+    // is mostly per vertex and triangle, for large ones per fragment
+    // (tests/bench/results/render.csv). 0: squares only.
+    double triangles_below_px = 12;
+    // Skip particles whose sphere lies wholly outside the view: they colour
+    // no pixel, so the frame is the same without them.
+    bool cull_outside_view = true;
+};
+
+// Settings from the scene's render section; ranges the scene leaves open come
+// from the scene's physics, so colours mean the same in every frame.
+RenderSettings make_render_settings(const Scene& scene);
+
+} // namespace sph

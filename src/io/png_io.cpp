@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <libdeflate.h>
+#include <png.h>
 #include <memory>
 #include <string>
 #include <utility>
@@ -56,11 +57,6 @@ unsigned char* sphclip_zlib_compress(unsigned char* data, int data_len, int* out
 #define STBIW_ZLIB_COMPRESS sphclip_zlib_compress
 #include <stb_image_write.h>
 
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#define STBI_ONLY_PNG
-#define STBI_NO_STDIO // read_png reads the file itself, to report why it cannot
-#include <stb_image.h>
 
 namespace sph {
 
@@ -118,11 +114,82 @@ Image read_png(const fs::path& path) {
     return decode_png(bytes, path);
 }
 
+namespace {
+
+// libpng reports errors by longjmp; the message is kept here first. Only C
+// data lives between setjmp and the calls that may jump back to it.
+struct PngReadState {
+    const unsigned char* data;
+    std::size_t size;
+    std::size_t at;
+    char message[256];
+};
+
+extern "C" void png_read_from_memory(png_structp png, png_bytep out, png_size_t length) {
+    auto* state = static_cast<PngReadState*>(png_get_io_ptr(png));
+    if (length > state->size - state->at)
+        png_error(png, "the file ends inside a chunk");
+    std::memcpy(out, state->data + state->at, length);
+    state->at += length;
+}
+
+extern "C" void png_keep_error(png_structp png, png_const_charp message) {
+    auto* state = static_cast<PngReadState*>(png_get_io_ptr(png));
+    std::snprintf(state->message, sizeof state->message, "%s", message);
+    png_longjmp(png, 1);
+}
+
+extern "C" void png_ignore_warning(png_structp, png_const_charp) {}
+
+// Decodes into `rgba`, sized once the header is read; `rows` points into it.
+// Both belong to the caller, so that nothing but C data changes in this
+// frame between setjmp and a longjmp. Returns false with state.message set on
+// any error.
+bool decode_with_libpng(PngReadState& state, std::vector<std::uint8_t>& rgba,
+                        std::vector<png_bytep>& rows, int& width, int& height) {
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, png_keep_error,
+                                             png_ignore_warning);
+    if (!png) {
+        std::snprintf(state.message, sizeof state.message, "out of memory");
+        return false;
+    }
+    png_infop info = png_create_info_struct(png);
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+        return false;
+    }
+    png_set_read_fn(png, &state, png_read_from_memory);
+    png_set_user_limits(png, max_png_side, max_png_side);
+    // Ancillary chunks (text, ICC profiles) are bounded too: a few bytes
+    // of a compressed chunk may claim gigabytes.
+    png_set_chunk_malloc_max(png, png_alloc_size_t(64) << 20);
+    png_read_info(png, info);
+    const png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
+    // Every form as 8-bit RGBA, with no gamma conversion: palettes and
+    // low bit depths expanded, tRNS as alpha, 16 bits cut to their high byte.
+    png_set_expand(png);
+    png_set_strip_16(png);
+    png_set_gray_to_rgb(png);
+    png_set_add_alpha(png, 0xff, PNG_FILLER_AFTER);
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    if (png_get_rowbytes(png, info) != std::size_t(w) * 4)
+        png_error(png, "unexpected row layout after conversion to RGBA");
+    width = int(w);
+    height = int(h);
+    rgba.assign(std::size_t(w) * std::size_t(h) * 4, 0);
+    rows.resize(h);
+    for (png_uint_32 y = 0; y < h; ++y)
+        rows[y] = rgba.data() + std::size_t(y) * std::size_t(w) * 4;
+    png_read_image(png, rows.data());
+    png_read_end(png, nullptr);
+    png_destroy_read_struct(&png, &info, nullptr);
+    return true;
+}
+
+} // namespace
+
 Image decode_png(std::string_view bytes, const fs::path& path) {
-    // stb counts the file's bytes in an int.
-    if (bytes.size() > std::size_t(INT_MAX))
-        throw ImageReadError(path, "file too large");
-    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     // The header's size first, from the IHDR chunk that must follow the
     // signature: a few bytes can claim an image of gigabytes.
     if (bytes.size() >= 24 && bytes.substr(0, 8) == "\x89PNG\r\n\x1a\n" &&
@@ -142,16 +209,16 @@ Image decode_png(std::string_view bytes, const fs::path& path) {
                                                    claimed_width, claimed_height, max_png_side,
                                                    max_png_pixels));
     }
-    int width = 0, height = 0, channels_in_file = 0;
-    const std::unique_ptr<stbi_uc, void (*)(void*)> pixels{
-        stbi_load_from_memory(data, int(bytes.size()), &width, &height, &channels_in_file, 4),
-        stbi_image_free};
-    if (!pixels) {
-        const char* reason = stbi_failure_reason();
-        throw ImageReadError(path, reason ? reason : "not a PNG");
-    }
+    if (bytes.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8))
+        throw ImageReadError(path, "not a PNG (no PNG signature)");
+    PngReadState state{reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), 0, {}};
+    std::vector<std::uint8_t> rgba;
+    std::vector<png_bytep> rows;
+    int width = 0, height = 0;
+    if (!decode_with_libpng(state, rgba, rows, width, height))
+        throw ImageReadError(path, state.message[0] ? state.message : "not a readable PNG");
     Image image(width, height);
-    std::memcpy(image.rgba.data(), pixels.get(), image.rgba.size());
+    image.rgba = std::move(rgba);
     return image;
 }
 

@@ -40,8 +40,9 @@ inline constexpr int max_png_side = 16384;
 inline constexpr long long max_png_pixels = 64LL << 20;
 
 // Reads any PNG (grey, palette, 16-bit: converted) as 8-bit RGBA; alpha is
-// 255 where the file has none. Only a regular file within png_file_limit is
-// read. Throws ImageReadError.
+// 255 where the file has none. Decoded by libpng (Debian libpng-dev), which
+// checks every chunk's CRC; no gamma conversion. Only a regular file within
+// png_file_limit is read. Throws ImageReadError.
 Image read_png(const std::filesystem::path& path);
 // The same from the file's bytes; `path` names it in errors.
 Image decode_png(std::string_view bytes, const std::filesystem::path& path);

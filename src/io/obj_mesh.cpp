@@ -25,11 +25,18 @@ constexpr std::size_t max_face_corners = 256;
 // the solid checks' cross products would overflow long before.
 constexpr Real max_vertex_distance = 1e12; // m
 
-// Checks what tinyobjloader would let through or take too long on, naming
-// the line: a face with too many corners, a vertex that is not a finite
-// number or lies absurdly far away once scaled.
-void check_obj_lines(std::string_view text, Real scale, const Vec<3>& offset,
-                     const std::function<void(const std::string&)>& fail) {
+// Where each `v` line is and what it says, to name a bad vertex.
+struct VertexLine {
+    std::size_t line;
+    std::vector<std::string> words;
+};
+
+// Checks what tinyobjloader would take too long on or read wrongly, naming
+// the line: a face with too many corners, a vertex coordinate that is not a
+// finite number. Returns the `v` lines, for check_vertices.
+std::vector<VertexLine> scan_obj_lines(std::string_view text,
+                                       const std::function<void(const std::string&)>& fail) {
+    std::vector<VertexLine> vertex_lines;
     std::size_t line_number = 0;
     for (std::size_t begin = 0; begin < text.size();) {
         std::size_t end = text.find('\n', begin);
@@ -46,36 +53,61 @@ void check_obj_lines(std::string_view text, Real scale, const Vec<3>& offset,
         const bool vertex = line[0] == 'v' && (line[1] == ' ' || line[1] == '\t');
         if (!face && !vertex)
             continue;
-        std::vector<std::string_view> words;
+        std::vector<std::string> words;
         for (std::size_t at = 1; at < line.size();) {
             const std::size_t w = line.find_first_not_of(" \t\r", at);
             if (w == std::string_view::npos)
                 break;
             const std::size_t w_end = std::min(line.find_first_of(" \t\r", w), line.size());
-            words.push_back(line.substr(w, w_end - w));
+            if (vertex && words.size() < 3)
+                words.emplace_back(line.substr(w, w_end - w));
+            else if (face)
+                words.emplace_back();
             at = w_end;
             if (face && words.size() > max_face_corners)
                 fail(fmt::format("line {}: a face of more than {} corners; split it into "
                                  "triangles (sphclip reads faces of at most {} corners)",
                                  line_number, max_face_corners, max_face_corners));
         }
-        if (vertex)
-            for (std::size_t a = 0; a < 3 && a < words.size(); ++a) {
-                const std::string word(words[a]);
+        if (vertex) {
+            // tinyobjloader reads "nan" or "x" as 0: check the text itself.
+            for (const std::string& word : words) {
                 char* stop = nullptr;
                 const double x = std::strtod(word.c_str(), &stop);
-                const double placed = scale * x + offset[int(a)];
-                if (!std::isfinite(x) || !std::isfinite(placed) ||
-                    std::abs(placed) > max_vertex_distance)
-                    fail(fmt::format("line {}: vertex coordinate \"{}\" is {}", line_number,
-                                     word.substr(0, 40),
-                                     std::isfinite(x) && std::isfinite(placed)
-                                         ? fmt::format("{:g} m from the origin once scaled; at "
-                                                       "most {:g} m",
-                                                       std::abs(placed), max_vertex_distance)
-                                         : std::string("not a finite number")));
+                if (stop == word.c_str() || *stop != '\0' || !std::isfinite(x))
+                    fail(fmt::format("line {}: vertex coordinate \"{}\" is not a finite number",
+                                     line_number, word.substr(0, 40)));
             }
+            vertex_lines.push_back({line_number, std::move(words)});
+        }
     }
+    return vertex_lines;
+}
+
+// Refuses a vertex, as tinyobjloader read it, that is not a finite number
+// or lies absurdly far once placed, naming its line and its text ("0e3000"
+// is read as infinity times zero).
+void check_vertices(const std::vector<tinyobj::real_t>& coordinates, Real scale,
+                    const Vec<3>& offset, const std::vector<VertexLine>& lines,
+                    const std::function<void(const std::string&)>& fail) {
+    const std::size_t count = coordinates.size() / 3;
+    for (std::size_t v = 0; v < count; ++v)
+        for (int a = 0; a < 3; ++a) {
+            const double x = double(coordinates[3 * v + std::size_t(a)]);
+            const double placed = scale * x + offset[a];
+            if (std::isfinite(placed) && std::abs(placed) <= max_vertex_distance)
+                continue;
+            const bool located = lines.size() == count && std::size_t(a) < lines[v].words.size();
+            const std::string where =
+                located ? fmt::format("line {}: vertex coordinate \"{}\"", lines[v].line,
+                                      lines[v].words[std::size_t(a)].substr(0, 40))
+                        : fmt::format("vertex {} coordinate {}", v + 1, "xyz"[a]);
+            fail(fmt::format("{} is {}", where,
+                             std::isfinite(placed)
+                                 ? fmt::format("{:g} m from the origin once scaled; at most {:g} m",
+                                               std::abs(placed), max_vertex_distance)
+                                 : std::string("not a finite number")));
+        }
 }
 
 } // namespace
@@ -103,7 +135,7 @@ std::shared_ptr<const TriangleMesh> parse_obj_mesh(std::string_view text,
     auto fail = [&](const std::string& why) {
         throw InputError(scene_file, field, fmt::format("\"{}\": {}", path.string(), why));
     };
-    check_obj_lines(text, scale, offset, fail);
+    const std::vector<VertexLine> vertex_lines = scan_obj_lines(text, fail);
 
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
@@ -114,6 +146,7 @@ std::shared_ptr<const TriangleMesh> parse_obj_mesh(std::string_view text,
         fail(fmt::format("not a readable OBJ file ({})", reader.Error()));
 
     const std::vector<tinyobj::real_t>& coordinates = reader.GetAttrib().vertices;
+    check_vertices(coordinates, scale, offset, vertex_lines, fail);
     std::vector<Vec<3>> vertices(coordinates.size() / 3);
     // Exactly repeated positions are one vertex: an exporter that writes a
     // corner once per face would otherwise leave every edge open.

@@ -200,7 +200,7 @@ TEST_CASE("compare pairs two folders by file name and reports what is missing or
     CHECK(after.at("extra").empty());
 }
 
-TEST_CASE("compare --update blesses a single image; a folder against a file is bad input",
+TEST_CASE("compare --update blesses a single image, and a folder against a file is bad input",
           "[compare][cli]") {
     TempFolder tmp;
     sph::Image plain(8, 8), changed(8, 8);

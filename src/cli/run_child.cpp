@@ -2,6 +2,7 @@
 
 #include "cli/child_process.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/stop_signals.hpp"
 
 #include <chrono>
 #include <csignal>
@@ -15,35 +16,6 @@ namespace sph {
 namespace fs = std::filesystem;
 
 namespace {
-
-volatile std::sig_atomic_t stop_requested = 0;
-
-void request_stop(int) {
-    stop_requested = 1;
-}
-
-// Installs the stop handler for SIGINT and SIGTERM while it lives.
-class StopSignals {
-  public:
-    StopSignals() {
-        stop_requested = 0;
-        struct sigaction action {};
-        action.sa_handler = request_stop;
-        sigemptyset(&action.sa_mask);
-        sigaction(SIGINT, &action, &old_int_);
-        sigaction(SIGTERM, &action, &old_term_);
-    }
-    ~StopSignals() {
-        sigaction(SIGINT, &old_int_, nullptr);
-        sigaction(SIGTERM, &old_term_, nullptr);
-    }
-    StopSignals(const StopSignals&) = delete;
-    StopSignals& operator=(const StopSignals&) = delete;
-
-  private:
-    struct sigaction old_int_ {};
-    struct sigaction old_term_ {};
-};
 
 void clear_earlier_outputs(const fs::path& out) {
     std::error_code ec;
@@ -80,7 +52,7 @@ ChildBatch run_children(const std::vector<ChildRunRequest>& requests, int jobs,
                         const std::function<void(std::size_t, const ChildRunResult&)>& finished) {
     using clock = std::chrono::steady_clock;
     const std::string program = self_executable().string();
-    StopSignals signals;
+    const StopSignals stop_signals;
     // Runs side by side share the cores: an OpenMP thread that spins while
     // it waits takes a core from another run. The user's choice stands.
     if (jobs > 1)
@@ -99,7 +71,7 @@ ChildBatch run_children(const std::vector<ChildRunRequest>& requests, int jobs,
     bool stopping = false;
 
     while (next < requests.size() || !running.empty()) {
-        if (stop_requested && !stopping) {
+        if (StopSignals::received() != 0 && !stopping) {
             stopping = batch.interrupted = true;
             for (const auto& r : running)
                 kill(r.pid, SIGTERM);

@@ -4,6 +4,7 @@
 #include "cli/compare_command.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/run_command.hpp"
+#include "cli/set_options.hpp"
 #include "cli/study_command.hpp"
 #include "cli/validate_command.hpp"
 #include "io/input_error.hpp"
@@ -115,13 +116,7 @@ int main(int argc, char** argv) {
             run.scene = scene_path;
         if (!out_path.empty())
             run.out = out_path;
-        for (const auto& s : sets) {
-            const auto eq = s.find('=');
-            if (eq == std::string::npos)
-                throw sph::InputError("command line", "--set",
-                                      fmt::format("expected KEY=VALUE, got \"{}\"", s));
-            run.overrides.push_back({s.substr(0, eq), s.substr(eq + 1)});
-        }
+        run.overrides = sph::parse_sets(sets);
         if (duration > 0)
             run.overrides.push_back({"duration", fmt::format("{}", duration)});
         if (fps > 0)

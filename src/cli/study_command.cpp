@@ -9,6 +9,7 @@
 #include "cli/data_folders.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/run_child.hpp"
+#include "cli/set_options.hpp"
 #include "cli/study_report.hpp"
 #include "cli/validation_cases.hpp"
 #include "io/input_error.hpp"
@@ -223,10 +224,7 @@ int study_command(const StudyOptions& options) {
     for (const auto& v : options.vary)
         variations.push_back(parse_variation(v));
     const auto combinations = expand_combinations(variations);
-    for (const auto& s : options.sets)
-        if (s.find('=') == std::string::npos)
-            throw InputError("command line", "--set",
-                             fmt::format("expected KEY=VALUE, got \"{}\"", s));
+    check_sets(options.sets);
     const fs::path scene = options.scene;
     if (!fs::is_regular_file(scene))
         throw InputError(scene.string(), "", "no such scene file");

@@ -5,6 +5,7 @@
 #include "cli/data_folders.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/run_child.hpp"
+#include "cli/set_options.hpp"
 #include "cli/validation_cases.hpp"
 #include "io/files.hpp"
 #include "io/input_error.hpp"
@@ -112,10 +113,7 @@ CLI::App* add_validate_command(CLI::App& app, ValidateOptions& options) {
 
 int validate_command(const ValidateOptions& options) {
     const auto selected = select_cases(options.cases);
-    for (const auto& s : options.sets)
-        if (s.find('=') == std::string::npos)
-            throw InputError("command line", "--set",
-                             fmt::format("expected KEY=VALUE, got \"{}\"", s));
+    check_sets(options.sets);
     const fs::path scenes =
         options.scenes_dir.empty() ? find_scenes_folder() : fs::path(options.scenes_dir);
     fs::path references = options.reference_dir;

@@ -1,6 +1,7 @@
 #include "cli/validate_command.hpp"
 
 #include "analysis/run_outputs.hpp"
+#include "cli/batch_runs.hpp"
 #include "cli/child_process.hpp"
 #include "cli/data_folders.hpp"
 #include "cli/exit_codes.hpp"
@@ -11,7 +12,6 @@
 #include "io/input_error.hpp"
 
 #include <CLI/CLI.hpp>
-#include <cmath>
 #include <cstdio>
 #include <fmt/format.h>
 
@@ -74,10 +74,9 @@ void check_inputs(const std::vector<const ValidationCase*>& selected, const fs::
             throw InputError("command line", "--scenes-dir",
                              fmt::format("no scene {} for the case {}",
                                          (scenes / (c->name + ".json")).string(), c->name));
+        references = reference_folder(*c, references);
         if (reference_file(*c).empty())
             continue;
-        if (references.empty())
-            references = find_reference_folder();
         if (!fs::exists(references / reference_file(*c)))
             throw InputError(
                 "command line", "--reference-dir",
@@ -120,45 +119,30 @@ int validate_command(const ValidateOptions& options) {
     check_inputs(selected, scenes, references);
 
     const fs::path out = options.out;
-    std::error_code ec;
-    fs::create_directories(out, ec);
-    if (ec)
-        throw InputError("command line", "--out",
-                         fmt::format("cannot create {}: {}", out.string(), ec.message()));
-    const int threads = options.threads ? options.threads : (options.jobs > 1 ? 1 : 0);
+    create_out_folder(out);
+    const int threads = threads_per_run(options.threads, options.jobs);
     std::vector<ChildRunRequest> requests;
+    std::vector<std::string> names;
     for (const auto* c : selected) {
-        std::vector<std::string> sets = c->sets;
-        sets.insert(sets.end(), options.sets.begin(), options.sets.end());
-        requests.push_back(
-            {scenes / (c->name + ".json"), out / c->name / "run", sets, true, threads});
+        requests.push_back({scenes / (c->name + ".json"), out / c->name / "run",
+                            run_sets(c, options.sets), true, threads});
+        names.push_back(c->name);
     }
 
-    fmt::print("validate: {} case(s) into {}/, {} at a time\n", selected.size(), out.string(),
-               options.jobs);
-    std::fflush(stdout);
-    std::size_t done = 0;
-    const ChildBatch batch =
-        run_children(requests, options.jobs, [&](std::size_t i, const ChildRunResult& r) {
-            fmt::print("[{}/{}] {}: {} after {:.1f} s\n", ++done, selected.size(),
-                       selected[i]->name, status_of(r), r.measured_wall_s);
-            std::fflush(stdout);
-        });
-    if (batch.bad_input) {
-        fmt::print(stderr, "{}\n", last_lines(batch.runs[0].log, 5));
+    const auto batch = run_batch(fmt::format("validate: {} case(s) into {}/, {} at a time",
+                                             selected.size(), out.string(), options.jobs),
+                                 requests, options.jobs, names, status_of);
+    if (!batch)
         return exit_bad_input;
-    }
 
     bool unstable = false, bad_input = false, failed = false;
     std::string summary = std::string(summary_header) + "\n";
     for (std::size_t i = 0; i < selected.size(); ++i) {
         const auto& c = *selected[i];
-        const auto& result = batch.runs[i];
+        const auto& result = batch->runs[i];
         const RunOutputs run = read_run_outputs(requests[i].out);
-        const nlohmann::json::json_pointer solver_key("/solver/name");
-        const std::string solver =
-            run.scene.contains(solver_key) ? run.scene.at(solver_key).get<std::string>() : "";
-        const double wall = std::isnan(run.wall_s) ? result.measured_wall_s : run.wall_s;
+        const std::string solver = run_solver(run);
+        const double wall = run_wall_s(run, result);
         const std::string status = status_of(result);
         nlohmann::json metrics;
         std::string verdict;
@@ -198,7 +182,7 @@ int validate_command(const ValidateOptions& options) {
     write_file_atomically(out / "summary.csv", summary);
     fmt::print("validate: summary in {}; comparison tables and plots in {}/CASE/\n",
                (out / "summary.csv").string(), out.string());
-    if (batch.interrupted)
+    if (batch->interrupted)
         return exit_interrupted;
     if (bad_input)
         return exit_bad_input;

@@ -179,6 +179,32 @@ void mark_pareto_front(StudyReport& report) {
         report.rows[i].pareto = optimal[i];
 }
 
+// The case whose error scores the runs: the one --reference names, or
+// without --reference the one the scene is named like
+// (scenes/dam_break_2d.json); null: the runs are compared with the finest.
+const ValidationCase* scored_case_for(const std::string& reference, const fs::path& scene) {
+    if (reference.empty())
+        return find_validation_case(scene.stem().string());
+    if (reference == "finest")
+        return nullptr;
+    const ValidationCase* c = find_validation_case(reference);
+    if (!c)
+        throw InputError("command line", "--reference",
+                         fmt::format("\"{}\" is neither finest nor a case ({})", reference,
+                                     validation_case_names()));
+    return c;
+}
+
+// One line a run, then where the report is.
+void print_study(const StudyReport& report, const fs::path& out) {
+    for (const auto& row : report.rows)
+        fmt::print("run {:>3}  {:<40} {:<11} wall={:<8.3g} error={:<10.4g}{}\n", row.run,
+                   row.folder, row.status, row.wall_s, row.error, row.pareto ? "  pareto" : "");
+    fmt::print("study: error = {}\nstudy: {}, {} and {}\n", report.error_name,
+               (out / "study.csv").string(), (out / "study.md").string(),
+               (out / "study.png").string());
+}
+
 } // namespace
 
 CLI::App* add_study_command(CLI::App& app, StudyOptions& options) {
@@ -226,18 +252,7 @@ int study_command(const StudyOptions& options) {
     if (!fs::is_regular_file(scene))
         throw InputError(scene.string(), "", "no such scene file");
 
-    // The error: a validation case's, when asked or when the scene is named
-    // like one (scenes/dam_break_2d.json), else against the finest run.
-    const ValidationCase* scored_case = nullptr;
-    if (options.reference.empty())
-        scored_case = find_validation_case(scene.stem().string());
-    else if (options.reference != "finest") {
-        scored_case = find_validation_case(options.reference);
-        if (!scored_case)
-            throw InputError("command line", "--reference",
-                             fmt::format("\"{}\" is neither finest nor a case ({})",
-                                         options.reference, validation_case_names()));
-    }
+    const ValidationCase* scored_case = scored_case_for(options.reference, scene);
     const fs::path references = scored_case ? reference_folder(*scored_case, options.reference_dir)
                                             : fs::path(options.reference_dir);
 
@@ -296,12 +311,7 @@ int study_command(const StudyOptions& options) {
 
     mark_pareto_front(report);
     write_study_report(report, out);
-    for (const auto& row : report.rows)
-        fmt::print("run {:>3}  {:<40} {:<11} wall={:<8.3g} error={:<10.4g}{}\n", row.run,
-                   row.folder, row.status, row.wall_s, row.error, row.pareto ? "  pareto" : "");
-    fmt::print("study: error = {}\nstudy: {}, {} and {}\n", report.error_name,
-               (out / "study.csv").string(), (out / "study.md").string(),
-               (out / "study.png").string());
+    print_study(report, out);
     return batch->interrupted ? exit_interrupted : exit_success;
 }
 

@@ -84,6 +84,57 @@ void check_inputs(const std::vector<const ValidationCase*>& selected, const fs::
     }
 }
 
+// What went wrong in the cases, for the exit code.
+struct CaseOutcomes {
+    bool unstable = false, bad_input = false, failed = false;
+};
+
+// Scores a case's finished run from `run_folder` (the comparison tables and
+// metrics.json into `folder`), prints its summary line, and returns its row
+// of summary.csv.
+std::string report_case(const ValidationCase& c, const ChildRunResult& result,
+                        const fs::path& run_folder, const fs::path& folder,
+                        const fs::path& references, CaseOutcomes& outcomes) {
+    const RunOutputs run = read_run_outputs(run_folder);
+    const std::string solver = run_solver(run);
+    const double wall = run_wall_s(run, result);
+    const std::string status = status_of(result);
+    nlohmann::json metrics;
+    std::string verdict;
+    if (result.started && result.exit_code == exit_success) {
+        try {
+            const CaseScore score =
+                score_case(c, run_folder, folder, references, true, "solver " + solver);
+            metrics = score.metrics;
+            verdict = score.pass ? "PASS" : "FAIL";
+            write_file_atomically(folder / "metrics.json", metrics.dump(2) + "\n");
+            fmt::print("{:<15} solver={:<6} {}  wall={:.1f}s  {}\n", c.name, solver, score.figures,
+                       wall, verdict);
+        } catch (const std::exception& e) {
+            fmt::print("{:<15} solver={:<6} cannot score the run: {}\n", c.name, solver, e.what());
+            outcomes.failed = true;
+        }
+    } else if (!result.started) {
+        fmt::print("{:<15} not run\n", c.name);
+    } else {
+        fmt::print("{:<15} solver={:<6} {} (exit {}) after {:.1f}s\n", c.name, solver, status,
+                   result.exit_code, wall);
+        fmt::print("    {}\n", error_line(result.log));
+        outcomes.unstable |= result.exit_code == exit_unstable;
+        outcomes.bad_input |= result.exit_code == exit_bad_input;
+        outcomes.failed |= result.exit_code != exit_unstable &&
+                           result.exit_code != exit_bad_input &&
+                           result.exit_code != exit_interrupted;
+    }
+    return fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.name, solver, status, run.particles,
+        run.steps, result.started ? fmt::format("{:.4g}", wall) : "", cell(metrics, "mean_abs_dZ"),
+        cell(metrics, "max_abs_dZ"), cell(metrics, "pressure_error_rms_pct"),
+        cell(metrics, "pressure_error_max_pct"), cell(metrics, "density_error_avg_pct"),
+        cell(metrics, "speed_max_m_s"), cell(metrics, "front_error_mean_pct"),
+        cell(metrics, "front_error_max_pct"), verdict);
+}
+
 } // namespace
 
 CLI::App* add_validate_command(CLI::App& app, ValidateOptions& options) {
@@ -135,60 +186,21 @@ int validate_command(const ValidateOptions& options) {
     if (!batch)
         return exit_bad_input;
 
-    bool unstable = false, bad_input = false, failed = false;
+    CaseOutcomes outcomes;
     std::string summary = std::string(summary_header) + "\n";
-    for (std::size_t i = 0; i < selected.size(); ++i) {
-        const auto& c = *selected[i];
-        const auto& result = batch->runs[i];
-        const RunOutputs run = read_run_outputs(requests[i].out);
-        const std::string solver = run_solver(run);
-        const double wall = run_wall_s(run, result);
-        const std::string status = status_of(result);
-        nlohmann::json metrics;
-        std::string verdict;
-        if (result.started && result.exit_code == exit_success) {
-            try {
-                const CaseScore score = score_case(c, requests[i].out, out / c.name, references,
-                                                   true, "solver " + solver);
-                metrics = score.metrics;
-                verdict = score.pass ? "PASS" : "FAIL";
-                write_file_atomically(out / c.name / "metrics.json", metrics.dump(2) + "\n");
-                fmt::print("{:<15} solver={:<6} {}  wall={:.1f}s  {}\n", c.name, solver,
-                           score.figures, wall, verdict);
-            } catch (const std::exception& e) {
-                fmt::print("{:<15} solver={:<6} cannot score the run: {}\n", c.name, solver,
-                           e.what());
-                failed = true;
-            }
-        } else if (!result.started) {
-            fmt::print("{:<15} not run\n", c.name);
-        } else {
-            fmt::print("{:<15} solver={:<6} {} (exit {}) after {:.1f}s\n", c.name, solver, status,
-                       result.exit_code, wall);
-            fmt::print("    {}\n", error_line(result.log));
-            unstable |= result.exit_code == exit_unstable;
-            bad_input |= result.exit_code == exit_bad_input;
-            failed |= result.exit_code != exit_unstable && result.exit_code != exit_bad_input &&
-                      result.exit_code != exit_interrupted;
-        }
-        summary += fmt::format(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.name, solver, status, run.particles,
-            run.steps, result.started ? fmt::format("{:.4g}", wall) : "",
-            cell(metrics, "mean_abs_dZ"), cell(metrics, "max_abs_dZ"),
-            cell(metrics, "pressure_error_rms_pct"), cell(metrics, "pressure_error_max_pct"),
-            cell(metrics, "density_error_avg_pct"), cell(metrics, "speed_max_m_s"),
-            cell(metrics, "front_error_mean_pct"), cell(metrics, "front_error_max_pct"), verdict);
-    }
+    for (std::size_t i = 0; i < selected.size(); ++i)
+        summary += report_case(*selected[i], batch->runs[i], requests[i].out,
+                               out / selected[i]->name, references, outcomes);
     write_file_atomically(out / "summary.csv", summary);
     fmt::print("validate: summary in {}; comparison tables and plots in {}/CASE/\n",
                (out / "summary.csv").string(), out.string());
     if (batch->interrupted)
         return exit_interrupted;
-    if (bad_input)
+    if (outcomes.bad_input)
         return exit_bad_input;
-    if (unstable)
+    if (outcomes.unstable)
         return exit_unstable;
-    return failed ? exit_failure : exit_success;
+    return outcomes.failed ? exit_failure : exit_success;
 }
 
 } // namespace sph

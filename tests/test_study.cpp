@@ -211,6 +211,13 @@ TEST_CASE("study: bad input exits 2 before running more than once", "[study][cli
         CHECK(r.exit_code == 2);
         CHECK_THAT(r.output, Catch::Contains("nope.json"));
     }
+    SECTION("a --set without =: refused before any run") {
+        const auto r =
+            run_sphclip(tmp, {"study", scene, "--set", "fps", "--vary", "fps=10,20", "--out", out});
+        CHECK(r.exit_code == 2);
+        CHECK_THAT(r.output, Catch::Contains("--set: expected KEY=VALUE, got \"fps\""));
+        CHECK_FALSE(fs::exists(fs::path(out) / "runs"));
+    }
     SECTION("an unknown key: the run's own message, and only the first run tried") {
         const auto r = run_sphclip(tmp, {"study", scene, "--set", "fluid.spacingg=0.01", "--vary",
                                          "fps=10,20,30", "--jobs", "2", "--out", out});

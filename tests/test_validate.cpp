@@ -231,6 +231,15 @@ TEST_CASE("validate: an unknown case exits 2 listing the cases", "[validate][cli
     CHECK(!fs::exists(tmp / "v"));
 }
 
+TEST_CASE("validate: a --set without = exits 2 before any run", "[validate][cli]") {
+    TempFolder tmp;
+    const auto result = run_sphclip(
+        tmp, {"validate", "hydrostatic_2d", "--set", "fps", "--out", (tmp / "v").string()});
+    CHECK(result.exit_code == 2);
+    CHECK_THAT(result.output, Catch::Contains("--set: expected KEY=VALUE, got \"fps\""));
+    CHECK(!fs::exists(tmp / "v"));
+}
+
 TEST_CASE("validate: an unstable run exits 3 and is reported", "[validate][cli]") {
     TempFolder tmp;
     const fs::path out = tmp / "v";

@@ -46,37 +46,8 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", SPHCLIP_VERSION);
     app.require_subcommand(1);
 
-    sph::RunOptions run;
-    std::string scene_path, out_path;
-    std::vector<std::string> sets;
-    double duration = 0, fps = 0;
-    bool no_png = false, no_mp4 = false;
-    auto* run_cmd = app.add_subcommand("run", "Simulate a scene and write its frames.");
-    run_cmd->add_option("scene", scene_path, "Scene file (JSON); none: the built-in 2D dam break");
-    run_cmd->add_option("--out", out_path, "Output folder (default out/<scene name>/)");
-    run_cmd->add_option("--set", sets, "Override a scene field: --set solver.dt=2e-4 (repeatable)")
-        ->type_name("KEY=VALUE")
-        ->allow_extra_args(false);
-    run_cmd->add_option("--threads", run.threads, "Threads (default: all cores)")
-        ->check(CLI::Range(1, 1024));
-    run_cmd->add_option("--duration", duration, "Simulated seconds (same as --set duration=S)")
-        ->check(CLI::PositiveNumber);
-    run_cmd->add_option("--fps", fps, "Frames per second (same as --set fps=N)")
-        ->check(CLI::PositiveNumber);
-    run_cmd->add_option("--export", run.exports,
-                        "Particle data per frame: csv, vtk (binary, compressed) or vtk-ascii")
-        ->check(CLI::IsMember({"csv", "vtk", "vtk-ascii"}))
-        ->allow_extra_args(false);
-    run_cmd->add_flag("--no-png", no_png, "Write no PNG frames");
-    run_cmd->add_flag("--no-mp4", no_mp4, "Write no MP4 video");
-    run_cmd->add_flag("--quiet", run.quiet, "No progress line or summary");
-    run_cmd->add_flag("--fast-preview", run.fast_preview,
-                      "Half-size frames and the fastest x264 preset (ultrafast)");
-    run_cmd
-        ->add_option("--backend", run.backend,
-                     "Headless GL context: auto (EGL, then OSMesa), egl or osmesa "
-                     "(default: the scene's render.backend)")
-        ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
+    sph::RunCommandLine run;
+    sph::add_run_command(app, run);
 
     bool markdown = false;
     auto* keys_cmd =
@@ -112,25 +83,7 @@ int main(int argc, char** argv) {
             study.command_line = join_arguments(argc, argv);
             return sph::study_command(study);
         }
-        if (!scene_path.empty())
-            run.scene = scene_path;
-        if (!out_path.empty())
-            run.out = out_path;
-        for (const auto& s : sets) {
-            const auto eq = s.find('=');
-            if (eq == std::string::npos)
-                throw sph::InputError("command line", "--set",
-                                      fmt::format("expected KEY=VALUE, got \"{}\"", s));
-            run.overrides.push_back({s.substr(0, eq), s.substr(eq + 1)});
-        }
-        if (duration > 0)
-            run.overrides.push_back({"duration", fmt::format("{}", duration)});
-        if (fps > 0)
-            run.overrides.push_back({"fps", fmt::format("{}", fps)});
-        run.png = !no_png;
-        run.mp4 = !no_mp4;
-        run.command_line = join_arguments(argc, argv);
-        return sph::run_command(run);
+        return sph::run_command(sph::run_options(run, join_arguments(argc, argv)));
     } catch (const sph::GlContextError& e) {
         fmt::print(stderr, "sphclip: error: {}\nsphclip: (--no-png --no-mp4 runs need no OpenGL)\n",
                    e.what());

@@ -8,6 +8,10 @@
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}
+
 namespace sph {
 
 struct RunOptions {
@@ -21,9 +25,24 @@ struct RunOptions {
     bool quiet = false;
     // Half the image size (rounded to even) and the fastest x264 preset.
     bool fast_preview = false;
-    std::string backend; // --backend; empty: the scene's render.backend
+    std::string backend;      // --backend; empty: the scene's render.backend
     std::string command_line; // recorded in run.json
 };
+
+// `run`'s command line as it is parsed; run_options() makes it RunOptions.
+struct RunCommandLine {
+    std::string scene, out;        // empty: the built-in scene, out/<scene name>/
+    std::vector<std::string> sets; // --set KEY=VALUE
+    double duration = 0, fps = 0;  // 0: the scene's
+    bool no_png = false, no_mp4 = false;
+    RunOptions options; // --threads, --export, --quiet, --fast-preview, --backend
+};
+
+// Adds the `run` subcommand to `app`; parsing fills `line`.
+CLI::App* add_run_command(CLI::App& app, RunCommandLine& line);
+
+// Throws InputError for a --set that is not KEY=VALUE.
+RunOptions run_options(const RunCommandLine& line, const std::string& command_line);
 
 // Returns the process exit code; throws InputError for bad input.
 int run_command(const RunOptions& options);

@@ -5,10 +5,11 @@
 #include "analysis/pareto_front.hpp"
 #include "analysis/run_outputs.hpp"
 #include "analysis/study_plan.hpp"
+#include "cli/batch_runs.hpp"
 #include "cli/child_process.hpp"
-#include "cli/data_folders.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/run_child.hpp"
+#include "cli/set_options.hpp"
 #include "cli/study_report.hpp"
 #include "cli/validation_cases.hpp"
 #include "io/input_error.hpp"
@@ -155,14 +156,11 @@ void score_against_case(const ValidationCase& c, const fs::path& references, con
 void fill_row(StudyRow& row, const ChildRunResult& result, const fs::path& folder) {
     const RunOutputs run = read_run_outputs(folder);
     row.status = status_of(result);
-    const nlohmann::json::json_pointer solver_key("/solver/name");
-    row.solver = run.scene.contains(solver_key) ? run.scene.at(solver_key).get<std::string>() : "";
+    row.solver = run_solver(run);
     row.particles = run.particles;
     row.steps = run.steps;
     row.dt_avg_s = run.dt_avg;
-    row.wall_s = !result.started          ? nan
-                 : std::isnan(run.wall_s) ? result.measured_wall_s
-                                          : run.wall_s;
+    row.wall_s = result.started ? run_wall_s(run, result) : nan;
     row.density_error_avg_pct = run.density_error_avg_pct;
     row.density_error_max_pct = run.density_error_max_pct;
     row.error = nan;
@@ -179,6 +177,32 @@ void mark_pareto_front(StudyReport& report) {
     const auto optimal = pareto_optimal(points);
     for (std::size_t i = 0; i < report.rows.size(); ++i)
         report.rows[i].pareto = optimal[i];
+}
+
+// The case whose error scores the runs: the one --reference names, or
+// without --reference the one the scene is named like
+// (scenes/dam_break_2d.json); null: the runs are compared with the finest.
+const ValidationCase* scored_case_for(const std::string& reference, const fs::path& scene) {
+    if (reference.empty())
+        return find_validation_case(scene.stem().string());
+    if (reference == "finest")
+        return nullptr;
+    const ValidationCase* c = find_validation_case(reference);
+    if (!c)
+        throw InputError("command line", "--reference",
+                         fmt::format("\"{}\" is neither finest nor a case ({})", reference,
+                                     validation_case_names()));
+    return c;
+}
+
+// One line a run, then where the report is.
+void print_study(const StudyReport& report, const fs::path& out) {
+    for (const auto& row : report.rows)
+        fmt::print("run {:>3}  {:<40} {:<11} wall={:<8.3g} error={:<10.4g}{}\n", row.run,
+                   row.folder, row.status, row.wall_s, row.error, row.pareto ? "  pareto" : "");
+    fmt::print("study: error = {}\nstudy: {}, {} and {}\n", report.error_name,
+               (out / "study.csv").string(), (out / "study.md").string(),
+               (out / "study.png").string());
 }
 
 } // namespace
@@ -224,42 +248,22 @@ int study_command(const StudyOptions& options) {
     for (const auto& v : options.vary)
         variations.push_back(parse_variation(v));
     const auto combinations = expand_combinations(variations);
-    for (const auto& s : options.sets)
-        if (s.find('=') == std::string::npos)
-            throw InputError("command line", "--set",
-                             fmt::format("expected KEY=VALUE, got \"{}\"", s));
+    check_sets(options.sets);
     const fs::path scene = options.scene;
     if (!fs::is_regular_file(scene))
         throw InputError(scene.string(), "", "no such scene file");
 
-    // The error: a validation case's, when asked or when the scene is named
-    // like one (scenes/dam_break_2d.json), else against the finest run.
-    const ValidationCase* scored_case = nullptr;
-    if (options.reference.empty())
-        scored_case = find_validation_case(scene.stem().string());
-    else if (options.reference != "finest") {
-        scored_case = find_validation_case(options.reference);
-        if (!scored_case)
-            throw InputError("command line", "--reference",
-                             fmt::format("\"{}\" is neither finest nor a case ({})",
-                                         options.reference, validation_case_names()));
-    }
-    fs::path references = options.reference_dir;
-    if (scored_case && !reference_file(*scored_case).empty() && references.empty())
-        references = find_reference_folder();
+    const ValidationCase* scored_case = scored_case_for(options.reference, scene);
+    const fs::path references = scored_case ? reference_folder(*scored_case, options.reference_dir)
+                                            : fs::path(options.reference_dir);
 
     const fs::path out = options.out.empty() ? fs::path("out") / ("study_" + scene.stem().string())
                                              : fs::path(options.out);
-    std::error_code ec;
-    fs::create_directories(out / "runs", ec);
-    if (ec)
-        throw InputError("command line", "--out",
-                         fmt::format("cannot create {}: {}", out.string(), ec.message()));
+    create_out_folder(out, "runs");
 
     // Runs scored as a case run as validate runs them (the case's own --set
     // first); the user's --set, --duration and --fps win.
-    std::vector<std::string> common = scored_case ? scored_case->sets : std::vector<std::string>{};
-    common.insert(common.end(), options.sets.begin(), options.sets.end());
+    std::vector<std::string> common = run_sets(scored_case, options.sets);
     if (options.duration > 0)
         common.push_back(fmt::format("duration={}", options.duration));
     if (options.fps > 0)
@@ -270,13 +274,14 @@ int study_command(const StudyOptions& options) {
                    "(--reference finest compares them with the finest run)\n",
                    options.metric, scored_case->name);
     const bool particles_needed = scored_case || metric != "kinetic_energy";
-    const int threads = options.threads ? options.threads : (options.jobs > 1 ? 1 : 0);
+    const int threads = threads_per_run(options.threads, options.jobs);
     StudyReport report;
     report.scene = options.scene;
     report.command_line = options.command_line;
     for (const auto& v : variations)
         report.keys.push_back(v.key);
     std::vector<ChildRunRequest> requests;
+    std::vector<std::string> names;
     for (std::size_t i = 0; i < combinations.size(); ++i) {
         StudyRow row;
         row.run = i;
@@ -288,25 +293,18 @@ int study_command(const StudyOptions& options) {
         for (const auto& [key, value] : combinations[i])
             request.sets.push_back(key + "=" + value);
         requests.push_back(request);
+        names.push_back("run " + row.folder);
     }
 
-    fmt::print("study: {} runs of {} into {}/, {} at a time\n", requests.size(), scene.string(),
-               out.string(), options.jobs);
-    std::fflush(stdout);
-    std::size_t done = 0;
-    const ChildBatch batch =
-        run_children(requests, options.jobs, [&](std::size_t i, const ChildRunResult& r) {
-            fmt::print("[{}/{}] run {}: {} after {:.1f} s\n", ++done, requests.size(),
-                       report.rows[i].folder, status_of(r), r.measured_wall_s);
-            std::fflush(stdout);
-        });
-    if (batch.bad_input) {
-        fmt::print(stderr, "{}\n", last_lines(batch.runs[0].log, 5));
+    const auto batch =
+        run_batch(fmt::format("study: {} runs of {} into {}/, {} at a time", requests.size(),
+                              scene.string(), out.string(), options.jobs),
+                  requests, options.jobs, names, status_of);
+    if (!batch)
         return exit_bad_input;
-    }
 
     for (std::size_t i = 0; i < report.rows.size(); ++i)
-        fill_row(report.rows[i], batch.runs[i], requests[i].out);
+        fill_row(report.rows[i], batch->runs[i], requests[i].out);
     if (scored_case)
         score_against_case(*scored_case, references, out / "runs", report);
     else
@@ -314,13 +312,8 @@ int study_command(const StudyOptions& options) {
 
     mark_pareto_front(report);
     write_study_report(report, out);
-    for (const auto& row : report.rows)
-        fmt::print("run {:>3}  {:<40} {:<11} wall={:<8.3g} error={:<10.4g}{}\n", row.run,
-                   row.folder, row.status, row.wall_s, row.error, row.pareto ? "  pareto" : "");
-    fmt::print("study: error = {}\nstudy: {}, {} and {}\n", report.error_name,
-               (out / "study.csv").string(), (out / "study.md").string(),
-               (out / "study.png").string());
-    return batch.interrupted ? exit_interrupted : exit_success;
+    print_study(report, out);
+    return batch->interrupted ? exit_interrupted : exit_success;
 }
 
 } // namespace sph

@@ -1,16 +1,17 @@
 #include "cli/validate_command.hpp"
 
 #include "analysis/run_outputs.hpp"
+#include "cli/batch_runs.hpp"
 #include "cli/child_process.hpp"
 #include "cli/data_folders.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/run_child.hpp"
+#include "cli/set_options.hpp"
 #include "cli/validation_cases.hpp"
 #include "io/files.hpp"
 #include "io/input_error.hpp"
 
 #include <CLI/CLI.hpp>
-#include <cmath>
 #include <cstdio>
 #include <fmt/format.h>
 
@@ -73,15 +74,65 @@ void check_inputs(const std::vector<const ValidationCase*>& selected, const fs::
             throw InputError("command line", "--scenes-dir",
                              fmt::format("no scene {} for the case {}",
                                          (scenes / (c->name + ".json")).string(), c->name));
+        references = reference_folder(*c, references);
         if (reference_file(*c).empty())
             continue;
-        if (references.empty())
-            references = find_reference_folder();
         if (!fs::exists(references / reference_file(*c)))
             throw InputError(
                 "command line", "--reference-dir",
                 fmt::format("no reference table {}", (references / reference_file(*c)).string()));
     }
+}
+
+// What went wrong in the cases, for the exit code.
+struct CaseOutcomes {
+    bool unstable = false, bad_input = false, failed = false;
+};
+
+// Scores a case's finished run from `run_folder` (the comparison tables and
+// metrics.json into `folder`), prints its summary line, and returns its row
+// of summary.csv.
+std::string report_case(const ValidationCase& c, const ChildRunResult& result,
+                        const fs::path& run_folder, const fs::path& folder,
+                        const fs::path& references, CaseOutcomes& outcomes) {
+    const RunOutputs run = read_run_outputs(run_folder);
+    const std::string solver = run_solver(run);
+    const double wall = run_wall_s(run, result);
+    const std::string status = status_of(result);
+    nlohmann::json metrics;
+    std::string verdict;
+    if (result.started && result.exit_code == exit_success) {
+        try {
+            const CaseScore score =
+                score_case(c, run_folder, folder, references, true, "solver " + solver);
+            metrics = score.metrics;
+            verdict = score.pass ? "PASS" : "FAIL";
+            write_file_atomically(folder / "metrics.json", metrics.dump(2) + "\n");
+            fmt::print("{:<15} solver={:<6} {}  wall={:.1f}s  {}\n", c.name, solver, score.figures,
+                       wall, verdict);
+        } catch (const std::exception& e) {
+            fmt::print("{:<15} solver={:<6} cannot score the run: {}\n", c.name, solver, e.what());
+            outcomes.failed = true;
+        }
+    } else if (!result.started) {
+        fmt::print("{:<15} not run\n", c.name);
+    } else {
+        fmt::print("{:<15} solver={:<6} {} (exit {}) after {:.1f}s\n", c.name, solver, status,
+                   result.exit_code, wall);
+        fmt::print("    {}\n", error_line(result.log));
+        outcomes.unstable |= result.exit_code == exit_unstable;
+        outcomes.bad_input |= result.exit_code == exit_bad_input;
+        outcomes.failed |= result.exit_code != exit_unstable &&
+                           result.exit_code != exit_bad_input &&
+                           result.exit_code != exit_interrupted;
+    }
+    return fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.name, solver, status, run.particles,
+        run.steps, result.started ? fmt::format("{:.4g}", wall) : "", cell(metrics, "mean_abs_dZ"),
+        cell(metrics, "max_abs_dZ"), cell(metrics, "pressure_error_rms_pct"),
+        cell(metrics, "pressure_error_max_pct"), cell(metrics, "density_error_avg_pct"),
+        cell(metrics, "speed_max_m_s"), cell(metrics, "front_error_mean_pct"),
+        cell(metrics, "front_error_max_pct"), verdict);
 }
 
 } // namespace
@@ -113,101 +164,44 @@ CLI::App* add_validate_command(CLI::App& app, ValidateOptions& options) {
 
 int validate_command(const ValidateOptions& options) {
     const auto selected = select_cases(options.cases);
-    for (const auto& s : options.sets)
-        if (s.find('=') == std::string::npos)
-            throw InputError("command line", "--set",
-                             fmt::format("expected KEY=VALUE, got \"{}\"", s));
+    check_sets(options.sets);
     const fs::path scenes =
         options.scenes_dir.empty() ? find_scenes_folder() : fs::path(options.scenes_dir);
     fs::path references = options.reference_dir;
     check_inputs(selected, scenes, references);
 
     const fs::path out = options.out;
-    std::error_code ec;
-    fs::create_directories(out, ec);
-    if (ec)
-        throw InputError("command line", "--out",
-                         fmt::format("cannot create {}: {}", out.string(), ec.message()));
-    const int threads = options.threads ? options.threads : (options.jobs > 1 ? 1 : 0);
+    create_out_folder(out);
+    const int threads = threads_per_run(options.threads, options.jobs);
     std::vector<ChildRunRequest> requests;
+    std::vector<std::string> names;
     for (const auto* c : selected) {
-        std::vector<std::string> sets = c->sets;
-        sets.insert(sets.end(), options.sets.begin(), options.sets.end());
-        requests.push_back(
-            {scenes / (c->name + ".json"), out / c->name / "run", sets, true, threads});
+        requests.push_back({scenes / (c->name + ".json"), out / c->name / "run",
+                            run_sets(c, options.sets), true, threads});
+        names.push_back(c->name);
     }
 
-    fmt::print("validate: {} case(s) into {}/, {} at a time\n", selected.size(), out.string(),
-               options.jobs);
-    std::fflush(stdout);
-    std::size_t done = 0;
-    const ChildBatch batch =
-        run_children(requests, options.jobs, [&](std::size_t i, const ChildRunResult& r) {
-            fmt::print("[{}/{}] {}: {} after {:.1f} s\n", ++done, selected.size(),
-                       selected[i]->name, status_of(r), r.measured_wall_s);
-            std::fflush(stdout);
-        });
-    if (batch.bad_input) {
-        fmt::print(stderr, "{}\n", last_lines(batch.runs[0].log, 5));
+    const auto batch = run_batch(fmt::format("validate: {} case(s) into {}/, {} at a time",
+                                             selected.size(), out.string(), options.jobs),
+                                 requests, options.jobs, names, status_of);
+    if (!batch)
         return exit_bad_input;
-    }
 
-    bool unstable = false, bad_input = false, failed = false;
+    CaseOutcomes outcomes;
     std::string summary = std::string(summary_header) + "\n";
-    for (std::size_t i = 0; i < selected.size(); ++i) {
-        const auto& c = *selected[i];
-        const auto& result = batch.runs[i];
-        const RunOutputs run = read_run_outputs(requests[i].out);
-        const nlohmann::json::json_pointer solver_key("/solver/name");
-        const std::string solver =
-            run.scene.contains(solver_key) ? run.scene.at(solver_key).get<std::string>() : "";
-        const double wall = std::isnan(run.wall_s) ? result.measured_wall_s : run.wall_s;
-        const std::string status = status_of(result);
-        nlohmann::json metrics;
-        std::string verdict;
-        if (result.started && result.exit_code == exit_success) {
-            try {
-                const CaseScore score = score_case(c, requests[i].out, out / c.name, references,
-                                                   true, "solver " + solver);
-                metrics = score.metrics;
-                verdict = score.pass ? "PASS" : "FAIL";
-                write_file_atomically(out / c.name / "metrics.json", metrics.dump(2) + "\n");
-                fmt::print("{:<15} solver={:<6} {}  wall={:.1f}s  {}\n", c.name, solver,
-                           score.figures, wall, verdict);
-            } catch (const std::exception& e) {
-                fmt::print("{:<15} solver={:<6} cannot score the run: {}\n", c.name, solver,
-                           e.what());
-                failed = true;
-            }
-        } else if (!result.started) {
-            fmt::print("{:<15} not run\n", c.name);
-        } else {
-            fmt::print("{:<15} solver={:<6} {} (exit {}) after {:.1f}s\n", c.name, solver, status,
-                       result.exit_code, wall);
-            fmt::print("    {}\n", error_line(result.log));
-            unstable |= result.exit_code == exit_unstable;
-            bad_input |= result.exit_code == exit_bad_input;
-            failed |= result.exit_code != exit_unstable && result.exit_code != exit_bad_input &&
-                      result.exit_code != exit_interrupted;
-        }
-        summary += fmt::format(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.name, solver, status, run.particles,
-            run.steps, result.started ? fmt::format("{:.4g}", wall) : "",
-            cell(metrics, "mean_abs_dZ"), cell(metrics, "max_abs_dZ"),
-            cell(metrics, "pressure_error_rms_pct"), cell(metrics, "pressure_error_max_pct"),
-            cell(metrics, "density_error_avg_pct"), cell(metrics, "speed_max_m_s"),
-            cell(metrics, "front_error_mean_pct"), cell(metrics, "front_error_max_pct"), verdict);
-    }
+    for (std::size_t i = 0; i < selected.size(); ++i)
+        summary += report_case(*selected[i], batch->runs[i], requests[i].out,
+                               out / selected[i]->name, references, outcomes);
     write_file_atomically(out / "summary.csv", summary);
     fmt::print("validate: summary in {}; comparison tables and plots in {}/CASE/\n",
                (out / "summary.csv").string(), out.string());
-    if (batch.interrupted)
+    if (batch->interrupted)
         return exit_interrupted;
-    if (bad_input)
+    if (outcomes.bad_input)
         return exit_bad_input;
-    if (unstable)
+    if (outcomes.unstable)
         return exit_unstable;
-    return failed ? exit_failure : exit_success;
+    return outcomes.failed ? exit_failure : exit_success;
 }
 
 } // namespace sph

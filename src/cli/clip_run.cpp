@@ -1,0 +1,397 @@
+#include "cli/clip_run.hpp"
+
+#include "cli/exit_codes.hpp"
+#include "cli/progress.hpp"
+#include "cli/stage_report.hpp"
+#include "cli/stop_signals.hpp"
+#include "io/files.hpp"
+#include "io/particle_export.hpp"
+#include "io/scene_setup.hpp"
+#include "io/stats_csv.hpp"
+#include "render/render_sink.hpp"
+#include "sph/surface.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+#include <optional>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace sph {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// How a run ended, as run.json's "status" says it.
+enum class RunStatus { completed, interrupted, unstable, failed };
+
+const char* status_name(RunStatus status) {
+    switch (status) {
+    case RunStatus::completed:
+        return "completed";
+    case RunStatus::interrupted:
+        return "interrupted";
+    case RunStatus::unstable:
+        return "unstable";
+    case RunStatus::failed:
+        return "failed";
+    }
+    return "failed";
+}
+
+struct RunEnd {
+    RunStatus status = RunStatus::completed;
+    std::string error;            // run.json "error"; empty: none
+    std::exception_ptr exception; // failed: rethrown once run.json says so
+};
+
+std::string message_of(const std::exception_ptr& error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const std::exception& e) {
+        return e.what();
+    } catch (...) {
+        return "unknown error";
+    }
+}
+
+// run.json, rewritten whole (atomically) as the run starts and as it ends.
+struct RunRecord {
+    json document;
+    fs::path path;
+    void save(const std::string& status, std::uint64_t frames, std::uint64_t steps,
+              double simulated, double wall, const std::string& error = {}) {
+        document["status"] = status;
+        document["frames"] = frames;
+        document["steps"] = steps;
+        document["simulated_time"] = simulated;
+        document["wall_s"] = wall;
+        if (!error.empty())
+            document["error"] = error;
+        write_file_atomically(path, document.dump(2) + "\n");
+    }
+};
+
+// One x264 thread, by measurement (tests/bench/results/encode.csv, README
+// "What encoding costs"): on 2 busy cores it encodes fastest, it leaves the
+// other core to the simulation while it overlaps it, and the clip's bytes do
+// not depend on the machine's core count, as libx264's choice would.
+constexpr int encoder_threads = 1;
+
+template <int D>
+class ClipRun {
+  public:
+    // Setup: the simulation, the sinks, run.json saying "running", and the
+    // run's first lines on the terminal.
+    ClipRun(const Scene& scene, const fs::path& folder, const RunOptions& options,
+            std::unique_ptr<GlContext> gl_context)
+        : scene_(scene), folder_(folder), options_(options), derived_(derive(scene)),
+          sim_(make_simulation<D>(scene, derived_)),
+          frames_(static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1),
+          progress_(!options.quiet && isatty(STDOUT_FILENO)) {
+        add_sinks(std::move(gl_context));
+        // Only the fields some sink reads are computed for output and copied.
+        for (const auto& sink : sinks_)
+            fields_ |= sink->fields();
+        sim_.set_output_fields(fields_);
+        record_.path = folder_ / "run.json";
+        record_.document = starting_document();
+        record_.save("running", 0, 0, 0, 0);
+        if (!options_.quiet)
+            print_start();
+    }
+
+    // The frame loop, then finish(), whatever ended the loop.
+    int run() {
+        const StopSignals stop_signals;
+        start_ = Clock::now();
+        RunEnd end;
+        try {
+            end = simulate_frames();
+        } catch (const UnstableError& e) {
+            end = {RunStatus::unstable, e.what(), nullptr};
+        } catch (const std::exception& e) {
+            // Disk full, encoder failure: finish what can be, record why.
+            end = {RunStatus::failed, e.what(), std::current_exception()};
+        }
+        return finish(std::move(end));
+    }
+
+  private:
+    // Each frame goes to stats.csv, then the particle exports, then the
+    // pictures. The GL sink is made first: it owns the context.
+    void add_sinks(std::unique_ptr<GlContext> gl_context) {
+        std::unique_ptr<RenderSink> render;
+        if (gl_context)
+            render = std::make_unique<RenderSink>(
+                std::move(gl_context), make_render_settings(scene_),
+                options_.png ? folder_ / "frames" : fs::path(),
+                options_.mp4 ? folder_ / "clip.mp4" : fs::path(), scene_.fps,
+                Mp4Options{scene_.render.video_quality, scene_.render.video_preset,
+                           encoder_threads},
+                EncodeThread::worker);
+        sinks_.push_back(std::make_unique<StatsCsv>(folder_ / "stats.csv"));
+        for (const auto& format : options_.exports) {
+            fs::create_directories(folder_ / "particles");
+            if (format == "csv")
+                sinks_.push_back(std::make_unique<ParticleCsv>(folder_));
+            else if (format == "vtk" || format == "vtk-ascii")
+                sinks_.push_back(std::make_unique<ParticleVtk>(
+                    folder_, format == "vtk" ? ParticleVtk::Encoding::binary
+                                             : ParticleVtk::Encoding::ascii));
+        }
+        if (render) {
+            render_ = render.get();
+            sinks_.push_back(std::move(render));
+        }
+    }
+
+    json starting_document() const {
+        json document = {
+            {"sphclip_version", SPHCLIP_VERSION},
+            {"command", options_.command_line},
+            {"scene_file", scene_.file},
+            {"scene", to_json(scene_)},
+            {"derived",
+             {{"smoothing_length", derived_.h},
+              {"mass", derived_.mass},
+              {"dt", derived_.dt},
+              {"sound_speed", derived_.sound_speed},
+              {"max_speed", sim_.params().watchdog.max_speed}}},
+            {"particles", sim_.state().size()},
+            {"threads", omp_get_max_threads()},
+            {"solver", std::string(sim_.solver().name())},
+            {"neighbour_search", std::string(sim_.search().name())},
+            {"fast_preview", options_.fast_preview},
+            {"outputs",
+             {{"stats", "stats.csv"},
+              {"exports", options_.exports},
+              {"png", options_.png ? json("frames/") : json(false)},
+              {"mp4", options_.mp4 ? json("clip.mp4") : json(false)}}},
+            {"output_fields", {{"pressure", fields_.pressure}}},
+        };
+        if (render_)
+            document["gl"] = {{"backend", render_->gl_info().backend},
+                              {"vendor", render_->gl_info().vendor},
+                              {"renderer", render_->gl_info().renderer},
+                              {"version", render_->gl_info().version}};
+        return document;
+    }
+
+    void print_start() const {
+        fmt::print("sphclip: {} ({}D, {} solver): {} particles, h = {:.4g} m, m = {:.4g} kg, "
+                   "dt = {:.4g} s, {} frames of {:.4g} s -> {}\n",
+                   scene_.name, D, scene_.solver.name, sim_.state().size(), derived_.h,
+                   derived_.mass, derived_.dt, frames_, scene_.duration, folder_.string());
+        if (options_.fast_preview)
+            fmt::print("sphclip: fast preview: half-size frames ({}x{}), x264 preset {}\n",
+                       scene_.render.size[0], scene_.render.size[1], scene_.render.video_preset);
+        if (render_)
+            fmt::print("sphclip: rendering {}x{} with {} ({}, OpenGL {})\n", scene_.render.size[0],
+                       scene_.render.size[1], render_->gl_info().backend,
+                       render_->gl_info().renderer, render_->gl_info().version);
+    }
+
+    RunEnd simulate_frames() {
+        for (std::uint64_t k = 0; k < frames_; ++k) {
+            // A frame is taken when simulation time crosses k / fps.
+            if (!simulate_until(double(k) / scene_.fps))
+                return {RunStatus::interrupted,
+                        fmt::format("stopped by signal {}", StopSignals::received()), nullptr};
+            take_snapshot(k);
+            write_snapshot();
+            progress_.update(k, frames_, sim_.time(), sim_.steps(), wall());
+        }
+        return {};
+    }
+
+    // Steps to `time` and brings the frame fields up to date; false when a
+    // signal asked to stop first (checked between steps).
+    bool simulate_until(double time) {
+        const auto start = Clock::now();
+        while (!sim_.reached(time) && StopSignals::received() == 0)
+            sim_.step_toward(time);
+        if (StopSignals::received() != 0)
+            return false;
+        sim_.update_fields();
+        simulate_seconds_.push_back(seconds_since(start));
+        return true;
+    }
+
+    // Counters, statistics and the particle fields some sink reads.
+    void take_snapshot(std::uint64_t k) {
+        snapshot_.frame = k;
+        snapshot_.steps = sim_.steps();
+        snapshot_.time = sim_.time();
+        snapshot_.steps_taken = sim_.take_counters();
+        const auto start = Clock::now();
+        snapshot_.stats = measure_frame(sim_.params(), sim_.state());
+        snapshot_.wall_seconds = wall();
+        copy_fields(sim_.state(), snapshot_, fields_);
+        if (render_ && D == 3 && scene_.render.cull_buried)
+            mark_buried(sim_.state(), sim_.neighbours(), scene_.fluid.spacing, snapshot_.buried);
+        frame_fields_s_ += seconds_since(start);
+    }
+
+    void write_snapshot() {
+        const auto start = Clock::now();
+        for (auto& sink : sinks_)
+            sink->write(snapshot_);
+        sinks_s_ += seconds_since(start);
+        ++written_;
+    }
+
+    // Every ending comes here: the sinks are finished (the video finalised),
+    // run.json records how the run ended and where the time went, and the
+    // ending is told.
+    int finish(RunEnd end) {
+        progress_.done();
+        // An encoder error may surface only as the video is finalised: the
+        // run failed, unless it had failed already (the first error is the
+        // one to report) or a sink failed before a blow-up (then the failure
+        // came first, as on the sequential path).
+        if (const std::exception_ptr sink_error = finish_sinks();
+            sink_error && end.status != RunStatus::failed)
+            end = {RunStatus::failed, message_of(sink_error), sink_error};
+        const double seconds = wall();
+        const std::vector<StageRow> stages = record_timings(seconds);
+        record_.save(status_name(end.status), written_, sim_.steps(), sim_.time(), seconds,
+                     end.error);
+        switch (end.status) {
+        case RunStatus::completed:
+            if (!options_.quiet)
+                fmt::print(
+                    "sphclip: done: {} steps, {} frames in {:.2f} s ({:.3g} particle-steps/s)\n{}",
+                    sim_.steps(), written_, seconds,
+                    seconds > 0 ? double(sim_.particle_steps()) / seconds : 0.0,
+                    stages_table(stages));
+            return exit_success;
+        case RunStatus::interrupted:
+            fmt::print(stderr, "sphclip: interrupted at t = {:.4g} s; {} frames kept in {}\n",
+                       sim_.time(), written_, folder_.string());
+            return exit_interrupted;
+        case RunStatus::unstable:
+            fmt::print(stderr,
+                       "sphclip: error: {}\nsphclip: the {} frames before it are kept in {}.\n",
+                       end.error, written_, folder_.string());
+            return exit_unstable;
+        case RunStatus::failed:
+            break;
+        }
+        // main() says why and picks the exit code.
+        std::rethrow_exception(end.exception);
+    }
+
+    // Every sink is finished, even after one fails (so the video is
+    // finalised whatever happens); returns the first error.
+    std::exception_ptr finish_sinks() {
+        std::exception_ptr error;
+        for (auto& sink : sinks_) {
+            try {
+                sink->finish();
+            } catch (...) {
+                if (!error)
+                    error = std::current_exception();
+            }
+        }
+        return error;
+    }
+
+    // run.json "timings" (per frame and in all) and "stages"; returns the
+    // stage rows for the terminal. The MP4 encoder runs on a worker thread:
+    // its busy time (`encode`) overlaps the main thread's stages, and only
+    // the main thread's wait for it (`encode wait`) adds to the wall time.
+    std::vector<StageRow> record_timings(double wall_seconds) {
+        const std::vector<FrameCost> costs = render_ ? render_->costs() : std::vector<FrameCost>{};
+        json frames = json::array();
+        double simulate_total = 0;
+        FrameCost total;
+        for (std::size_t k = 0; k < simulate_seconds_.size(); ++k) {
+            const FrameCost cost = k < costs.size() ? costs[k] : FrameCost{};
+            simulate_total += simulate_seconds_[k];
+            total.render_s += cost.render_s;
+            total.readback_s += cost.readback_s;
+            total.encode_s += cost.encode_s;
+            total.encode_wait_s += cost.encode_wait_s;
+            frames.push_back({{"frame", k},
+                              {"simulate_s", simulate_seconds_[k]},
+                              {"render_s", cost.render_s},
+                              {"readback_s", cost.readback_s},
+                              {"encode_s", cost.encode_s},
+                              {"encode_wait_s", cost.encode_wait_s}});
+        }
+        // Stats, exports, handing frames to the writers: what the sinks took
+        // beyond drawing, reading back and waiting for the encoder.
+        const double output =
+            std::max(0.0, sinks_s_ - total.render_s - total.readback_s - total.encode_wait_s);
+        // The frames libx264 held back are encoded at the end, while the run waits.
+        if (const auto times = render_ ? render_->encode_times() : std::nullopt) {
+            total.encode_s += times->flush_seconds;
+            total.encode_wait_s += times->finish_wait_seconds;
+        }
+        StageTimes after, overlapped;
+        after.add("frame statistics", frame_fields_s_);
+        after.add("render", total.render_s);
+        after.add("readback", total.readback_s);
+        after.add("encode wait", total.encode_wait_s);
+        after.add("output", output);
+        overlapped.add("encode", total.encode_s);
+        std::vector<StageRow> stages =
+            stage_rows(sim_.stage_times(), after, wall_seconds, sim_.particle_steps(), overlapped);
+        record_.document["stages"] = stages_json(stages);
+        record_.document["timings"] = {{"total",
+                                        {{"simulate_s", simulate_total},
+                                         {"render_s", total.render_s},
+                                         {"readback_s", total.readback_s},
+                                         {"encode_s", total.encode_s},
+                                         {"encode_wait_s", total.encode_wait_s}}},
+                                       {"frames", frames}};
+        return stages;
+    }
+
+    double wall() const { return seconds_since(start_); }
+
+    const Scene& scene_;
+    const fs::path folder_;
+    const RunOptions& options_;
+    const Derived derived_;
+    Simulation<D> sim_;
+    const std::uint64_t frames_;
+    std::vector<std::unique_ptr<FrameSink>> sinks_;
+    RenderSink* render_ = nullptr; // in sinks_, when frames are drawn
+    FrameFields fields_{.pressure = false};
+    RunRecord record_;
+    Progress progress_;
+    Clock::time_point start_;
+    Snapshot snapshot_;
+    std::uint64_t written_ = 0;
+    // Where the time went beyond the simulation's own stages.
+    std::vector<double> simulate_seconds_; // per frame: stepping and frame fields
+    double frame_fields_s_ = 0;            // statistics and copies for the sinks
+    double sinks_s_ = 0;                   // the sinks' write calls
+};
+
+} // namespace
+
+int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& options,
+             std::unique_ptr<GlContext> gl_context) {
+    if (scene.dimension == 2)
+        return ClipRun<2>(scene, folder, options, std::move(gl_context)).run();
+    return ClipRun<3>(scene, folder, options, std::move(gl_context)).run();
+}
+
+} // namespace sph

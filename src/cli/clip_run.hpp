@@ -1,0 +1,24 @@
+#pragma once
+// One `sphclip run` of a scene as an object (clip_run.cpp, ClipRun): setup
+// (the simulation, the sinks the frames go to, run.json), the frame loop,
+// and one finish path that every ending goes through (completed, unstable,
+// interrupted, failed), so the outputs are always finalised and run.json
+// always says how the run ended and where the time went.
+
+#include "cli/run_command.hpp"
+#include "io/scene.hpp"
+#include "render/gl_context.hpp"
+
+#include <filesystem>
+#include <memory>
+
+namespace sph {
+
+// Runs `scene` into `folder` (made and cleared of earlier frames by the
+// caller); `gl_context` is null when no PNG or MP4 is asked for. Returns the
+// exit code of a run that ended (README, "Exit codes"); rethrows the error of
+// a run that failed, after recording it in run.json.
+int run_clip(const Scene& scene, const std::filesystem::path& folder, const RunOptions& options,
+             std::unique_ptr<GlContext> gl_context);
+
+} // namespace sph

@@ -180,8 +180,9 @@ void check_run_outputs(const fs::path& out, int dimension, std::size_t particles
     // Particle exports: a CSV and a VTK file per frame, and the time series.
     const std::string csv_header = dimension == 2 ? "x,y,vx,vy,density,pressure,id,time"
                                                   : "x,y,z,vx,vy,vz,density,pressure,id,time";
+    // .sphclip.lock: the run's hold on its folder (docs/contract.md).
     std::set<fs::path> expected{out / "stats.csv", out / "run.json", out / "particles.pvd",
-                                out / "particles"};
+                                out / "particles", out / ".sphclip.lock"};
     const std::string pvd = read_text(out / "particles.pvd");
     for (std::size_t k = 0; k < frames; ++k) {
         INFO("frame " << k);

@@ -2,7 +2,9 @@
 // with no screen. See README.md for the command line and exit codes.
 
 #include "cli/compare_command.hpp"
+#include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/stop_signals.hpp"
 #include "cli/run_command.hpp"
 #include "cli/study_command.hpp"
 #include "cli/validate_command.hpp"
@@ -41,6 +43,9 @@ void print_keys(bool markdown) {
 } // namespace
 
 int main(int argc, char** argv) {
+    // Before anything else: a stop asked for during start-up is kept, and
+    // the run it reaches ends as interrupted (exit 130).
+    const sph::StopSignals stop_signals;
     CLI::App app{
         "sphclip: turns a scene file into a fluid clip (SPH) on a machine with no screen."};
     app.set_version_flag("--version", SPHCLIP_VERSION);
@@ -85,14 +90,14 @@ int main(int argc, char** argv) {
         }
         return sph::run_command(sph::run_options(run, join_arguments(argc, argv)));
     } catch (const sph::GlContextError& e) {
-        fmt::print(stderr, "sphclip: error: {}\nsphclip: (--no-png --no-mp4 runs need no OpenGL)\n",
+        sph::say(stderr, "sphclip: error: {}\nsphclip: (--no-png --no-mp4 runs need no OpenGL)\n",
                    e.what());
         return sph::exit_no_gl_context;
     } catch (const sph::InputError& e) {
-        fmt::print(stderr, "sphclip: error: {}\n", e.what());
+        sph::say(stderr, "sphclip: error: {}\n", e.what());
         return sph::exit_bad_input;
     } catch (const std::exception& e) {
-        fmt::print(stderr, "sphclip: error: {}\n", e.what());
+        sph::say(stderr, "sphclip: error: {}\n", e.what());
         return sph::exit_failure;
     }
 }

@@ -1,5 +1,7 @@
 #include "cli/progress.hpp"
 
+#include "cli/console.hpp"
+
 #include <fmt/format.h>
 
 namespace sph {
@@ -15,14 +17,13 @@ void Progress::update(std::uint64_t frame, std::uint64_t frames, double time, st
     drawn_ = true;
     const double rate = wall_seconds > 0 ? double(steps) / wall_seconds : 0;
     const double eta = frame > 0 ? wall_seconds / double(frame) * double(frames - 1 - frame) : 0;
-    fmt::print("\rframe {}/{}  t = {:.3f} s  {:.0f} steps/s  ETA {:.0f} s   ", frame + 1, frames,
+    say("\rframe {}/{}  t = {:.3f} s  {:.0f} steps/s  ETA {:.0f} s   ", frame + 1, frames,
                time, rate, eta);
-    std::fflush(stdout);
 }
 
 void Progress::done() {
     if (enabled_ && drawn_)
-        fmt::print("\n");
+        say("\n");
     drawn_ = false;
 }
 

@@ -1,15 +1,19 @@
 #pragma once
-// SIGINT and SIGTERM ask the program to stop, not kill it: `sphclip run`
-// finishes its outputs and exits 130, and `study` and `validate` ask their
-// child runs to stop and report what ran (README, "Exit codes").
+// SIGINT, SIGTERM, SIGHUP (a closed terminal, a dropped ssh), SIGQUIT and
+// SIGPIPE (an output pipe closed) ask the program to stop, not kill it:
+// `sphclip run` finishes its outputs and exits 130, and `study` and
+// `validate` ask their child runs to stop and report what ran
+// (docs/contract.md, "Signals"). main() installs the guard before anything
+// else, so a signal during start-up is not lost either.
 
 #include <csignal>
+#include <iterator>
 
 namespace sph {
 
-// Installs the stop handler for SIGINT and SIGTERM while it lives and puts
-// the earlier handlers back after. One at a time: the request it records is
-// the process's.
+// Installs the stop handler for those signals while it lives and puts the
+// earlier handlers back after. Guards may nest (a run inside a command):
+// the request recorded is the process's, kept from the first signal on.
 class StopSignals {
   public:
     StopSignals();
@@ -20,9 +24,11 @@ class StopSignals {
     // The signal that asked to stop since the guard was made; 0 when none.
     static int received();
 
+    // The signals that ask to stop.
+    static constexpr int signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE};
+
   private:
-    struct sigaction previous_int_ {};
-    struct sigaction previous_term_ {};
+    struct sigaction previous_[std::size(signals)] {};
 };
 
 } // namespace sph

@@ -14,7 +14,12 @@ namespace sph {
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
     const std::filesystem::path temporary = path.string() + ".partial";
-    std::FILE* f = std::fopen(temporary.c_str(), "wb");
+    // O_NOFOLLOW: a link planted at the temporary name is not written through.
+    const int fd =
+        ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
+    std::FILE* f = fd >= 0 ? ::fdopen(fd, "wb") : nullptr;
+    if (!f && fd >= 0)
+        ::close(fd);
     if (!f)
         throw std::runtime_error("cannot write " + temporary.string() + ": " +
                                  std::strerror(errno));

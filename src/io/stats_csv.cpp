@@ -2,13 +2,19 @@
 
 #include "sph/state_hash.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <stdexcept>
+#include <unistd.h>
 
 namespace sph {
 
 StatsCsv::StatsCsv(const std::filesystem::path& path) : path_(path) {
-    file_ = std::fopen(path.c_str(), "w");
+    // O_NOFOLLOW: never written through a link (docs/contract.md).
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
+    file_ = fd >= 0 ? ::fdopen(fd, "w") : nullptr;
+    if (!file_ && fd >= 0)
+        ::close(fd);
     if (!file_)
         throw std::runtime_error("cannot write " + path.string());
     fmt::print(file_, "{}\n", header);

@@ -1,0 +1,182 @@
+#include "cli/output_folder.hpp"
+
+#include "io/files.hpp"
+#include "io/input_error.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <string_view>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace sph {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* lock_name = ".sphclip.lock";
+
+// What a run writes at the folder's top, and whether each is a folder.
+struct OutputName {
+    const char* name;
+    bool folder;
+};
+constexpr OutputName output_names[] = {
+    {"frames", true},     {"particles", true},     {"stats.csv", false},
+    {"run.json", false},  {"clip.mp4", false},     {"particles.pvd", false},
+};
+
+[[noreturn]] void refuse(const fs::path& folder, const std::string& problem) {
+    throw InputError("command line", "--out", fmt::format("{}: {}", folder.string(), problem));
+}
+
+// lstat: true when `path` exists; `info` says what it is, links not followed.
+bool look(const fs::path& path, struct stat& info) {
+    return ::lstat(path.c_str(), &info) == 0;
+}
+
+// The pid written in the lock file by the run that holds it ("?" if unreadable).
+std::string holder_of(int fd) {
+    char text[32] = {};
+    const ssize_t n = ::pread(fd, text, sizeof text - 1, 0);
+    std::string pid = n > 0 ? std::string(text, std::size_t(n)) : std::string();
+    while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' '))
+        pid.pop_back();
+    return pid.empty() ? "?" : pid;
+}
+
+// True when folder/run.json is a run.json that sphclip wrote.
+bool written_by_sphclip(const fs::path& run_json) {
+    try {
+        const auto document =
+            nlohmann::json::parse(read_input_file(run_json, {"run.json", 64u << 20}));
+        return document.is_object() && document.contains("sphclip_version");
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+// A run's own files in frames/ or particles/: frame_NNNNN.png|csv|vtp and
+// their temporaries.
+bool is_frame_file(const std::string& name) {
+    if (!name.starts_with("frame_"))
+        return false;
+    std::string_view rest(name);
+    if (rest.ends_with(".partial"))
+        rest.remove_suffix(8);
+    return rest.ends_with(".png") || rest.ends_with(".csv") || rest.ends_with(".vtp");
+}
+
+} // namespace
+
+OutputFolder::OutputFolder(fs::path folder) : folder_(std::move(folder)) {
+    std::error_code ec;
+    fs::create_directories(folder_, ec);
+    if (ec || !fs::is_directory(folder_))
+        throw InputError("command line", "--out",
+                         fmt::format("cannot create the output folder {}: {}", folder_.string(),
+                                     ec ? ec.message() : "a file of that name exists"));
+    if (::access(folder_.c_str(), W_OK | X_OK) != 0)
+        throw InputError("command line", "--out",
+                         fmt::format("the output folder {} is not writable", folder_.string()));
+
+    // The lock first: what follows must not race another run's.
+    const fs::path lock = folder_ / lock_name;
+    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (lock_fd_ < 0)
+        refuse(folder_, fmt::format("cannot open its lock file {}: {}", lock_name,
+                                    errno == ELOOP ? "it is a symbolic link"
+                                                   : std::strerror(errno)));
+    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+        if (errno == EWOULDBLOCK) {
+            const std::string pid = holder_of(lock_fd_);
+            ::close(lock_fd_);
+            lock_fd_ = -1;
+            refuse(folder_, fmt::format("another sphclip run (pid {}) is writing to this folder; "
+                                        "wait for it to end or give another --out",
+                                        pid));
+        }
+        // A filesystem without locks: runs are not kept apart there.
+    }
+    const std::string pid = fmt::format("{}\n", ::getpid());
+    if (::ftruncate(lock_fd_, 0) != 0 ||
+        ::pwrite(lock_fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size())) {
+        // The pid is for the message of a refused run only; the lock holds.
+    }
+
+    // Every name a run writes: no link, no entry of the wrong type.
+    bool earlier_outputs = false;
+    for (const auto& [name, is_folder] : output_names) {
+        struct stat info {};
+        const fs::path path = folder_ / name;
+        for (const fs::path& p : {path, fs::path(path.string() + ".partial")}) {
+            if (!look(p, info))
+                continue;
+            if (S_ISLNK(info.st_mode))
+                refuse(folder_, fmt::format("{} is a symbolic link; sphclip never writes through "
+                                            "a link in its output folder: remove it or give "
+                                            "another --out",
+                                            p.filename().string()));
+            if (p == path && is_folder != S_ISDIR(info.st_mode))
+                refuse(folder_, fmt::format("{} is {} where a run writes {}: remove it or give "
+                                            "another --out",
+                                            name, S_ISDIR(info.st_mode) ? "a folder" : "a file",
+                                            is_folder ? "a folder" : "a file"));
+        }
+        if (!look(path, info))
+            continue;
+        if (!is_folder) {
+            earlier_outputs = true;
+            continue;
+        }
+        for (const auto& entry : fs::directory_iterator(path, ec)) {
+            struct stat inner {};
+            if (!is_frame_file(entry.path().filename().string()) || !look(entry.path(), inner))
+                continue;
+            if (S_ISLNK(inner.st_mode) || !S_ISREG(inner.st_mode))
+                refuse(folder_, fmt::format("{}/{} is {}; sphclip writes only regular files "
+                                            "there: remove it or give another --out",
+                                            name, entry.path().filename().string(),
+                                            S_ISLNK(inner.st_mode) ? "a symbolic link"
+                                                                   : "not a regular file"));
+            earlier_outputs = true;
+        }
+    }
+    if (!earlier_outputs)
+        return;
+    // Outputs are there: an earlier run's, or a user's.
+    if (!written_by_sphclip(folder_ / "run.json"))
+        refuse(folder_, "it holds files with the names a run writes (frames/frame_*, stats.csv, "
+                        "run.json, clip.mp4, particles...) but no run.json of a sphclip run: "
+                        "sphclip does not overwrite files it did not make; give another --out");
+    for (const auto& [name, is_folder] : output_names) {
+        const fs::path path = folder_ / name;
+        if (is_folder) {
+            std::size_t removed = 0;
+            for (const auto& entry : fs::directory_iterator(path, ec))
+                if (is_frame_file(entry.path().filename().string()) &&
+                    fs::remove(entry.path(), ec))
+                    ++removed;
+            if (removed > 0)
+                replaced_.push_back(fmt::format("{}/ ({} files)", name, removed));
+            continue;
+        }
+        for (const fs::path& p : {path, fs::path(path.string() + ".partial")})
+            if (p.filename() != "run.json" && fs::remove(p, ec))
+                replaced_.push_back(p.filename().string());
+    }
+}
+
+OutputFolder::~OutputFolder() {
+    // The lock file stays: removing it would let a third run lock a new
+    // file while a second still waits on the old one.
+    if (lock_fd_ >= 0)
+        ::close(lock_fd_);
+}
+
+} // namespace sph

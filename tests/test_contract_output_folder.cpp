@@ -1,0 +1,297 @@
+// The output-folder and signal contract (docs/contract.md): a run owns its
+// folder (a second run into it is refused, naming the holder), never writes
+// or deletes through a symbolic link, never overwrites a file no sphclip
+// run made, removes all of an earlier run's outputs, and treats SIGHUP,
+// SIGQUIT and SIGPIPE like SIGINT: it stops between steps and finalises.
+
+#include "support/run_sphclip.hpp"
+#include "support/temp_folder.hpp"
+
+extern "C" {
+#include <libavformat/avformat.h>
+}
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <csignal>
+#include <fcntl.h>
+#include <filesystem>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using sph::test::read_text;
+using sph::test::run_sphclip;
+using sph::test::TempFolder;
+using sph::test::write_text;
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// A small 2D tank: 36 particles, quick frames.
+const std::string small_scene = R"({
+    "domain": {"min": [0, 0], "max": [0.1, 0.1]},
+    "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
+    "render": {"size": [64, 64]},
+    "duration": 0.05, "fps": 40
+})";
+
+// sphclip started in the background with stdout and stderr to `log` (or
+// stdout to the write end `stdout_fd` of a pipe); the pid.
+pid_t start_sphclip(const std::vector<std::string>& args, const fs::path& log,
+                    int stdout_fd = -1) {
+    const pid_t pid = fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        const int log_fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(stdout_fd >= 0 ? stdout_fd : log_fd, STDOUT_FILENO);
+        dup2(log_fd, STDERR_FILENO);
+        setenv("OMP_WAIT_POLICY", "passive", 1);
+        std::vector<char*> argv{const_cast<char*>(SPHCLIP_EXE)};
+        for (const auto& a : args)
+            argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        execv(SPHCLIP_EXE, argv.data());
+        _exit(127);
+    }
+    return pid;
+}
+
+int wait_exit(pid_t pid) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// Waits until `path` exists and holds `text` (at most 30 s).
+bool wait_for(const fs::path& path, const std::string& text) {
+    for (int k = 0; k < 300; ++k) {
+        if (fs::exists(path) && contains(read_text(path), text))
+            return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    return false;
+}
+
+bool playable_mp4(const fs::path& path) {
+    AVFormatContext* video = nullptr;
+    if (avformat_open_input(&video, path.c_str(), nullptr, nullptr) != 0)
+        return false;
+    const bool ok = avformat_find_stream_info(video, nullptr) >= 0 && video->nb_streams == 1 &&
+                    video->streams[0]->nb_frames >= 1;
+    avformat_close_input(&video);
+    return ok;
+}
+
+} // namespace
+
+TEST_CASE("output folder: a second run into a running run's folder is refused, naming its pid",
+          "[contract][output_folder]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", small_scene);
+    const fs::path out = tmp / "shared";
+    // Run A: long enough to be running when B starts.
+    const pid_t a = start_sphclip({"run", (tmp / "scene.json").string(), "--out", out.string(),
+                                   "--duration", "100", "--export", "csv", "--threads", "1"},
+                                  tmp / "a.log");
+    REQUIRE(wait_for(out / "run.json", "\"running\""));
+    const auto b = run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--out", out.string(),
+                                     "--duration", "0.05", "--threads", "1"});
+    INFO(b.output);
+    CHECK(b.exit_code == 2);
+    CHECK(contains(b.output, out.string()));
+    CHECK(contains(b.output, fmt::format("another sphclip run (pid {})", a)));
+    // A is untouched by B, and ends cleanly when asked.
+    kill(a, SIGINT);
+    CHECK(wait_exit(a) == 130);
+    const json run = json::parse(read_text(out / "run.json"));
+    CHECK(run.at("status") == "interrupted");
+    CHECK(run.at("command").get<std::string>().find("--duration 100") != std::string::npos);
+    // After A, the folder is free again.
+    CHECK(run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--out", out.string(),
+                            "--no-mp4", "--threads", "1", "--quiet"})
+              .exit_code == 0);
+}
+
+TEST_CASE("output folder: nothing is written or deleted through a symbolic link",
+          "[contract][output_folder]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", small_scene);
+    const std::vector<std::string> run{"run", (tmp / "scene.json").string(), "--out",
+                                       (tmp / "out").string(), "--threads", "1", "--quiet"};
+
+    SECTION("a file that links elsewhere") {
+        fs::create_directories(tmp / "out");
+        write_text(tmp / "elsewhere.txt", "the user's file\n");
+        for (const char* name : {"stats.csv", "run.json", "clip.mp4", "run.json.partial"}) {
+            INFO(name);
+            fs::create_symlink(tmp / "elsewhere.txt", tmp / "out" / name);
+            const auto result = run_sphclip(tmp, run);
+            INFO(result.output);
+            CHECK(result.exit_code == 2);
+            CHECK(contains(result.output, std::string(name) + " is a symbolic link"));
+            CHECK(read_text(tmp / "elsewhere.txt") == "the user's file\n");
+            fs::remove(tmp / "out" / name);
+        }
+    }
+    SECTION("a frames folder that links to the user's pictures") {
+        fs::create_directories(tmp / "out");
+        fs::create_directories(tmp / "userpics");
+        write_text(tmp / "userpics" / "frame_00042.png", "a user's picture");
+        fs::create_directory_symlink(tmp / "userpics", tmp / "out" / "frames");
+        const auto result = run_sphclip(tmp, run);
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "frames is a symbolic link"));
+        CHECK(read_text(tmp / "userpics" / "frame_00042.png") == "a user's picture");
+        CHECK(fs::directory_iterator(tmp / "userpics")->path().filename() == "frame_00042.png");
+    }
+    SECTION("a frame inside frames/ that links elsewhere, after an earlier run") {
+        REQUIRE(run_sphclip(tmp, run).exit_code == 0);
+        write_text(tmp / "target.png", "kept");
+        fs::remove(tmp / "out" / "frames" / "frame_00001.png");
+        fs::create_symlink(tmp / "target.png", tmp / "out" / "frames" / "frame_00001.png");
+        const auto result = run_sphclip(tmp, run);
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "frames/frame_00001.png is a symbolic link"));
+        CHECK(read_text(tmp / "target.png") == "kept");
+    }
+}
+
+TEST_CASE("output folder: entries of the wrong type and a user's files are refused, "
+          "untouched and with nothing written",
+          "[contract][output_folder]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", small_scene);
+    const fs::path out = tmp / "out";
+    const std::vector<std::string> run{"run", (tmp / "scene.json").string(), "--out",
+                                       out.string(), "--threads", "1", "--quiet"};
+    fs::create_directories(out);
+
+    SECTION("run.json is a folder") {
+        fs::create_directories(out / "run.json");
+        const auto result = run_sphclip(tmp, run);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "run.json is a folder where a run writes a file"));
+    }
+    SECTION("frames is a file") {
+        write_text(out / "frames", "x");
+        const auto result = run_sphclip(tmp, run);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "frames is a file where a run writes a folder"));
+    }
+    SECTION("a clip.mp4 that no sphclip run made") {
+        write_text(out / "clip.mp4", "the user's video");
+        const auto result = run_sphclip(tmp, run);
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "no run.json of a sphclip run"));
+        CHECK(read_text(out / "clip.mp4") == "the user's video");
+    }
+    // Nothing of a run was written: no run.json, no temporary, no stats.
+    for (const char* name : {"run.json.partial", "stats.csv", "clip.mp4.partial"})
+        CHECK_FALSE(fs::exists(out / name));
+    CHECK_FALSE(fs::is_regular_file(out / "run.json"));
+}
+
+TEST_CASE("output folder: a re-run removes every output of the earlier run, and says so",
+          "[contract][output_folder]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", small_scene);
+    const fs::path out = tmp / "out";
+    std::vector<std::string> run{"run", (tmp / "scene.json").string(), "--out", out.string(),
+                                 "--threads", "1", "--export", "vtk"};
+    REQUIRE(run_sphclip(tmp, run).exit_code == 0);
+    REQUIRE(fs::exists(out / "clip.mp4"));
+    // Leftovers of a run that was killed: temporaries.
+    write_text(out / "clip.mp4.partial", "stale");
+    write_text(out / "frames" / "frame_00007.png.partial", "stale");
+    // A user's own file beside the outputs is theirs and stays.
+    write_text(out / "notes.txt", "mine");
+
+    const auto again = run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--out",
+                                         out.string(), "--threads", "1", "--no-mp4"});
+    INFO(again.output);
+    REQUIRE(again.exit_code == 0);
+    CHECK(contains(again.output, "replacing the earlier run in " + out.string()));
+    CHECK(contains(again.output, "clip.mp4"));
+    CHECK_FALSE(fs::exists(out / "clip.mp4"));
+    CHECK_FALSE(fs::exists(out / "clip.mp4.partial"));
+    CHECK_FALSE(fs::exists(out / "frames" / "frame_00007.png.partial"));
+    CHECK_FALSE(fs::exists(out / "particles.pvd"));
+    CHECK_FALSE(fs::exists(out / "particles" / "frame_00000.vtp"));
+    CHECK(fs::exists(out / "frames" / "frame_00002.png"));
+    CHECK(read_text(out / "notes.txt") == "mine");
+}
+
+TEST_CASE("signals: SIGHUP, SIGQUIT and a closed output pipe stop a run like SIGINT",
+          "[contract][signals]") {
+    for (const int signal : {SIGHUP, SIGQUIT, SIGPIPE}) {
+        INFO("signal " << signal);
+        TempFolder tmp;
+        write_text(tmp / "scene.json", small_scene);
+        const fs::path out = tmp / "out";
+        const std::vector<std::string> args{"run",        (tmp / "scene.json").string(),
+                                            "--out",      out.string(),
+                                            "--duration", "100",
+                                            "--threads",  "1"};
+        pid_t pid = -1;
+        if (signal == SIGPIPE) {
+            // stdout into a pipe whose reader is gone: the first line written
+            // raises SIGPIPE, as with `sphclip run ... | head -1` after head.
+            int fds[2];
+            REQUIRE(pipe(fds) == 0);
+            close(fds[0]);
+            pid = start_sphclip(args, tmp / "log", fds[1]);
+            close(fds[1]);
+        } else {
+            pid = start_sphclip(args, tmp / "log");
+            REQUIRE(wait_for(out / "stats.csv", "\n1,"));
+            kill(pid, signal);
+        }
+        CHECK(wait_exit(pid) == 130);
+        const json run = json::parse(read_text(out / "run.json"));
+        CHECK(run.at("status") == "interrupted");
+        CHECK(contains(run.at("error").get<std::string>(), fmt::format("signal {}", signal)));
+        // The video is finalised with the frames written (a closed pipe can
+        // stop the run before its first frame).
+        if (run.at("frames").get<int>() > 0)
+            CHECK(playable_mp4(out / "clip.mp4"));
+        CHECK_FALSE(fs::exists(out / "clip.mp4.partial"));
+    }
+}
+
+TEST_CASE("signals: SIGTERM at any moment of start-up ends the run with exit 130",
+          "[contract][signals]") {
+    // A 3D scene whose setup (scene, lattice, walls, GL context) takes a
+    // while: the signal lands in it or early in the run; either way the exit
+    // is 130. (Before main() starts, within the first milliseconds of the
+    // process, no program can catch a signal: docs/contract.md.)
+    TempFolder tmp;
+    for (const int delay_ms : {100, 250, 500}) {
+        INFO("SIGTERM after " << delay_ms << " ms");
+        const fs::path out = tmp / fmt::format("out{}", delay_ms);
+        const pid_t pid =
+            start_sphclip({"run", std::string(SPHCLIP_SOURCE_DIR) + "/scenes/dam_break_3d.json",
+                           "--out", out.string(), "--duration", "100", "--threads", "1"},
+                          tmp / "log");
+        std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+        kill(pid, SIGTERM);
+        const int code = wait_exit(pid);
+        INFO(read_text(tmp / "log"));
+        CHECK(code == 130);
+        // Either nothing was written, or a run.json that says why it stopped.
+        if (fs::exists(out / "run.json"))
+            CHECK(json::parse(read_text(out / "run.json")).at("status") == "interrupted");
+    }
+}

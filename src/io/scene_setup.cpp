@@ -135,11 +135,11 @@ EffectList<D> make_effects(const Scene& scene) {
     }
     if (scene.effects.artificial_viscosity)
         effects.push_back(
-            std::make_unique<ArtificialViscosity<D>>(*scene.effects.artificial_viscosity));
+            std::make_unique<ArtificialViscosity<D>>(scene.effects.artificial_viscosity->alpha));
     if (scene.effects.xsph)
-        effects.push_back(std::make_unique<Xsph<D>>(*scene.effects.xsph));
+        effects.push_back(std::make_unique<Xsph<D>>(scene.effects.xsph->epsilon));
     if (scene.effects.surface_tension)
-        effects.push_back(std::make_unique<SurfaceTension<D>>(*scene.effects.surface_tension));
+        effects.push_back(std::make_unique<SurfaceTension<D>>(scene.effects.surface_tension->gamma));
     for (std::size_t index = 0; index < scene.effects.emitters.size(); ++index) {
         const SceneEmitter& e = scene.effects.emitters[index];
         // The box's lattice, as for a fluid block; its thickness along v.

@@ -18,6 +18,24 @@
 
 namespace sph {
 
+// The scene's `effects.artificial_viscosity`; alpha 0 is no effect.
+struct ArtificialViscositySettings {
+    // The scene reads its default from solver.artificial_viscosity.
+    double alpha = 0;
+};
+
+inline const KeyTable<ArtificialViscositySettings>& artificial_viscosity_keys() {
+    static const KeyTable<ArtificialViscositySettings> keys{
+        {.path = "alpha",
+         .field = &ArtificialViscositySettings::alpha,
+         .doc = "Artificial viscosity effect (Monaghan 1992), its alpha; default "
+                "solver.artificial_viscosity. Without the key, wcsph uses "
+                "solver.artificial_viscosity and the other solvers none.",
+         .bound = Bound::non_negative},
+    };
+    return keys;
+}
+
 // Pi_ij of one pair, from v_ij . x_ij, rho_i + rho_j and r^2. Receding pairs
 // (v . x >= 0) give 0: a select, not a branch, and one division (the rest of
 // Pi grad W is products). At r = 0, v . x is 0 too.

@@ -6,6 +6,7 @@
 #include "sph/boundary_particles.hpp"
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/params.hpp"
+#include "sph/scene_key.hpp"
 #include "sph/state.hpp"
 
 #include <cstdint>

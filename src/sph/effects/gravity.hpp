@@ -5,6 +5,23 @@
 
 namespace sph {
 
+// The scene's `effects.gravity`: the acceleration itself, not an object.
+struct GravitySettings {
+    Vec3 acceleration{0, -9.81, 0}; // m/s^2
+};
+
+inline const KeyTable<GravitySettings>& gravity_keys() {
+    static const KeyTable<GravitySettings> keys{
+        {.path = "",
+         .field = &GravitySettings::acceleration,
+         .unit = "m/s^2",
+         .doc = "Gravity effect: a uniform acceleration. Absent from an `effects` object the "
+                "scene gives (or null): no gravity.",
+         .nullable = true},
+    };
+    return keys;
+}
+
 template <int D>
 class Gravity final : public Effect<D> {
   public:

@@ -22,6 +22,23 @@
 
 namespace sph {
 
+// The scene's `effects.surface_tension`.
+struct SurfaceTensionSettings {
+    double gamma = 1.0; // the coefficient of cohesion and curvature
+};
+
+inline const KeyTable<SurfaceTensionSettings>& surface_tension_keys() {
+    static const KeyTable<SurfaceTensionSettings> keys{
+        {.path = "gamma",
+         .field = &SurfaceTensionSettings::gamma,
+         .doc = "Surface tension effect (Akinci et al. 2013: cohesion and curvature), its "
+                "coefficient gamma; a drop in zero gravity becomes round. Absent: no surface "
+                "tension.",
+         .bound = Bound::positive},
+    };
+    return keys;
+}
+
 // Akinci et al. 2013, eq. 2, support radius h:
 //   C(r) = k (h - r)^3 r^3                 for h/2 < r <= h
 //   C(r) = k (2 (h - r)^3 r^3 - h^6 / 64)  for 0 < r <= h/2

@@ -19,6 +19,23 @@
 
 namespace sph {
 
+// The scene's `effects.xsph`.
+struct XsphSettings {
+    double epsilon = 0.5; // fraction of the way to the neighbours' mean velocity, in (0, 1]
+};
+
+inline const KeyTable<XsphSettings>& xsph_keys() {
+    static const KeyTable<XsphSettings> keys{
+        {.path = "epsilon",
+         .field = &XsphSettings::epsilon,
+         .doc = "XSPH velocity smoothing effect (Monaghan 1989): each step draws a particle's "
+                "velocity this fraction of the way to its neighbours' mean; in (0, 1]. Absent: "
+                "none.",
+         .bound = Bound::positive},
+    };
+    return keys;
+}
+
 template <int D>
 class Xsph final : public Effect<D> {
   public:

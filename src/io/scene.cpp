@@ -3,6 +3,7 @@
 #include "io/field_reader.hpp"
 #include "io/input_error.hpp"
 #include "io/key_walk.hpp"
+#include "io/keys/effect_registry.hpp"
 #include "io/keys/scene_keys.hpp"
 #include "io/scene_paths.hpp"
 #include "sph/kernels.hpp"
@@ -161,33 +162,41 @@ std::optional<S> read_effect(FieldReader& r, const std::string& name, const KeyT
 // unless effects.artificial_viscosity says otherwise. A coefficient of 0
 // means the effect is not in the step.
 void read_effects(FieldReader& r, Scene& s) {
-    const int dim = s.dimension;
-    const auto gravity = read_effect(r, "gravity", gravity_keys(), GravitySettings{}, dim);
-    if (r.present("effects"))
-        s.effects.gravity =
-            gravity ? std::optional(gravity->acceleration) : std::optional<Vec3>();
-
-    const ViscositySettings implied{s.solver.name == "seed" ? "seed" : "morris",
-                                    s.material.viscosity};
-    if (const auto given = read_effect(r, "viscosity", viscosity_keys(), implied, dim))
-        s.effects.viscosity = given->mu > 0 ? given : std::nullopt;
-    else if (implied.mu > 0)
-        s.effects.viscosity = implied;
-
+    const bool listed = r.present("effects");
+    const bool wcsph = s.solver.name == "wcsph";
+    // The values of keys an effect leaves out: the settings' own defaults,
+    // but for mu and alpha, which the scene gives elsewhere.
+    const ViscositySettings implied_viscosity{s.solver.name == "seed" ? "seed" : "morris",
+                                              s.material.viscosity};
     const ArtificialViscositySettings solver_alpha{s.solver.artificial_viscosity};
-    if (const auto given = read_effect(r, "artificial_viscosity", artificial_viscosity_keys(),
-                                       solver_alpha, dim))
-        s.effects.artificial_viscosity = given->alpha > 0 ? given : std::nullopt;
-    else if (s.solver.name == "wcsph" && solver_alpha.alpha > 0)
+    auto fallback = [&]<class S>(const S&) {
+        if constexpr (std::is_same_v<S, ViscositySettings>)
+            return implied_viscosity;
+        else if constexpr (std::is_same_v<S, ArtificialViscositySettings>)
+            return solver_alpha;
+        else
+            return S{};
+    };
+    for_each_registered_effect([&](const auto& entry) {
+        using S = typename std::decay_t<decltype(entry)>::Settings;
+        auto& effect = s.effects.*entry.field;
+        const auto given = read_effect(r, S::key, entry.keys(), fallback(S{}), s.dimension);
+        if (given || listed)
+            effect = given;
+    });
+    // Off at a coefficient of 0, and on without the key where the fluid or the solver says so.
+    if (s.effects.viscosity && !(s.effects.viscosity->mu > 0))
+        s.effects.viscosity.reset();
+    else if (!r.present("effects.viscosity") && implied_viscosity.mu > 0)
+        s.effects.viscosity = implied_viscosity;
+    if (s.effects.artificial_viscosity && !(s.effects.artificial_viscosity->alpha > 0))
+        s.effects.artificial_viscosity.reset();
+    else if (!r.present("effects.artificial_viscosity") && wcsph && solver_alpha.alpha > 0)
         s.effects.artificial_viscosity = solver_alpha;
-
-    s.effects.xsph = read_effect(r, "xsph", xsph_keys(), XsphSettings{}, dim);
     if (s.effects.xsph && s.effects.xsph->epsilon > 1)
         r.fail("effects.xsph.epsilon",
                fmt::format("{} is above 1: XSPH would overshoot the neighbours' mean velocity",
                            s.effects.xsph->epsilon));
-    s.effects.surface_tension =
-        read_effect(r, "surface_tension", surface_tension_keys(), SurfaceTensionSettings{}, dim);
 }
 
 void check_render_range(const FieldReader& r, const Scene& s) {
@@ -591,16 +600,15 @@ std::string single_precision_obstacle(const Scene& s, const std::string& kernel)
         return fmt::format("the single-precision passes run on the sorted grid's cells; "
                            "solver.neighbour_search {} lists neighbours for the double passes",
                            s.solver.neighbour_search);
-    if (s.effects.viscosity && s.effects.viscosity->model != "morris")
-        return fmt::format("effects.viscosity model {} reads neighbour lists, which the "
-                           "single-precision passes do not build",
-                           s.effects.viscosity->model);
-    if (s.effects.xsph)
-        return "effects.xsph reads neighbour lists, which the single-precision passes do not "
-               "build";
-    if (s.effects.surface_tension)
-        return "effects.surface_tension reads neighbour lists, which the single-precision "
-               "passes do not build";
+    std::string problem;
+    for_each_effect(s.effects, [&](const auto& effect) {
+        if (problem.empty() && effect.capabilities().reads_neighbour_lists)
+            problem = fmt::format("{} reads neighbour lists, which the single-precision passes "
+                                  "do not build",
+                                  effect.label());
+    });
+    if (!problem.empty())
+        return problem;
     return {};
 }
 
@@ -642,7 +650,7 @@ Derived derive(const Scene& s) {
         double g = 0, height = 0, v0 = 0;
         for (int a = 0; a < dim; ++a) {
             if (s.effects.gravity)
-                g += (*s.effects.gravity)[a] * (*s.effects.gravity)[a];
+                g += s.effects.gravity->acceleration[a] * s.effects.gravity->acceleration[a];
             height = std::max(height, s.domain.max[a] - s.domain.min[a]);
         }
         auto fastest = [&](const Vec3& v) {
@@ -675,7 +683,7 @@ Derived derive(const Scene& s) {
         double g = 0;
         if (s.effects.gravity)
             for (int a = 0; a < dim; ++a)
-                g += (*s.effects.gravity)[a] * (*s.effects.gravity)[a];
+                g += s.effects.gravity->acceleration[a] * s.effects.gravity->acceleration[a];
         d.dt = stable_time_step(
             time_step_settings(s),
             {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density,
@@ -718,21 +726,16 @@ json to_json(const Scene& s) {
     r.output.name = s.output.name.value_or(s.name);
 
     json effects = json::object();
-    if (r.effects.gravity)
-        effects["gravity"] = write_keys(gravity_keys(), GravitySettings{*r.effects.gravity}, dim);
+    for_each_registered_effect([&](const auto& entry) {
+        if (const auto& settings = r.effects.*entry.field)
+            effects[settings->key] = write_keys(entry.keys(), *settings, dim);
+    });
     // Both always written, 0 when off: read back, an absent key would let
     // material.viscosity or wcsph's solver.artificial_viscosity turn them on.
-    effects["viscosity"] = r.effects.viscosity
-                               ? write_keys(viscosity_keys(), *r.effects.viscosity, dim)
-                               : json{{"mu", 0.0}};
-    effects["artificial_viscosity"] =
-        write_keys(artificial_viscosity_keys(),
-                   r.effects.artificial_viscosity.value_or(ArtificialViscositySettings{}), dim);
-    if (r.effects.xsph)
-        effects["xsph"] = write_keys(xsph_keys(), *r.effects.xsph, dim);
-    if (r.effects.surface_tension)
-        effects["surface_tension"] =
-            write_keys(surface_tension_keys(), *r.effects.surface_tension, dim);
+    if (!r.effects.viscosity)
+        effects["viscosity"] = {{"mu", 0.0}};
+    if (!r.effects.artificial_viscosity)
+        effects["artificial_viscosity"] = {{"alpha", 0.0}};
     if (!r.effects.obstacles.empty())
         effects["obstacles"] = write_obstacles(r.effects.obstacles, dim);
     if (!r.effects.emitters.empty())

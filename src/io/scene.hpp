@@ -109,8 +109,8 @@ struct Scene {
     // Each present key is an effect in the step; an absent one costs nothing.
     // The settings and keys of each are declared in its file (sph/effects/).
     struct Effects {
-        // m/s^2 (gravity_keys.hpp): on unless an `effects` object leaves it out.
-        std::optional<Vec3> gravity = GravitySettings{}.acceleration;
+        // On unless an `effects` object leaves it out.
+        std::optional<GravitySettings> gravity = GravitySettings{};
         // From effects.viscosity or, without it, a material.viscosity above 0
         // with the solver's default model.
         std::optional<ViscositySettings> viscosity;

@@ -1,6 +1,7 @@
 #include "io/scene_setup.hpp"
 
 #include "io/input_error.hpp"
+#include "io/keys/effect_registry.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
 #include "sph/effects/emitter.hpp"
 #include "sph/effects/gravity.hpp"
@@ -125,21 +126,8 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
 template <int D>
 EffectList<D> make_effects(const Scene& scene) {
     EffectList<D> effects;
-    if (scene.effects.gravity)
-        effects.push_back(std::make_unique<Gravity<D>>(to_vec<D>(*scene.effects.gravity)));
-    if (const auto& viscosity = scene.effects.viscosity) {
-        if (viscosity->model == "seed")
-            effects.push_back(std::make_unique<SeedViscosity<D>>(viscosity->mu));
-        else
-            effects.push_back(std::make_unique<LaminarViscosity<D>>(viscosity->mu));
-    }
-    if (scene.effects.artificial_viscosity)
-        effects.push_back(
-            std::make_unique<ArtificialViscosity<D>>(scene.effects.artificial_viscosity->alpha));
-    if (scene.effects.xsph)
-        effects.push_back(std::make_unique<Xsph<D>>(scene.effects.xsph->epsilon));
-    if (scene.effects.surface_tension)
-        effects.push_back(std::make_unique<SurfaceTension<D>>(scene.effects.surface_tension->gamma));
+    for_each_effect(scene.effects,
+                    [&](const auto& settings) { effects.push_back(make_effect<D>(settings)); });
     for (std::size_t index = 0; index < scene.effects.emitters.size(); ++index) {
         const SceneEmitter& e = scene.effects.emitters[index];
         // The box's lattice, as for a fluid block; its thickness along v.

@@ -20,8 +20,12 @@ namespace sph {
 
 // The scene's `effects.artificial_viscosity`; alpha 0 is no effect.
 struct ArtificialViscositySettings {
+    static constexpr const char* key = "artificial_viscosity"; // in the scene's `effects`
     // The scene reads its default from solver.artificial_viscosity.
     double alpha = 0;
+    EffectCapabilities capabilities() const { return {}; }
+    // How the scene's checks name it.
+    std::string label() const { return "effects.artificial_viscosity"; }
 };
 
 inline const KeyTable<ArtificialViscositySettings>& artificial_viscosity_keys() {
@@ -112,5 +116,10 @@ class ArtificialViscosity final : public Effect<D> {
 
     Real alpha_;
 };
+
+template <int D>
+std::unique_ptr<Effect<D>> make_effect(const ArtificialViscositySettings& s) {
+    return std::make_unique<ArtificialViscosity<D>>(s.alpha);
+}
 
 } // namespace sph

@@ -21,6 +21,13 @@ namespace sph {
 // solver built for this step, the wall, obstacle and paddle particles (null
 // when the walls reflect and there are no obstacles or paddles), and the
 // step's length.
+// What an effect needs of the step, declared in its settings (its file),
+// so that the scene's checks ask the effect rather than know it by name.
+struct EffectCapabilities {
+    // Reads the neighbour lists, which wcsph's single-precision passes do not build.
+    bool reads_neighbour_lists = false;
+};
+
 template <int D>
 struct EffectInputs {
     const NeighbourList& neighbours;

@@ -24,7 +24,11 @@ namespace sph {
 
 // The scene's `effects.surface_tension`.
 struct SurfaceTensionSettings {
+    static constexpr const char* key = "surface_tension"; // in the scene's `effects`
     double gamma = 1.0; // the coefficient of cohesion and curvature
+    EffectCapabilities capabilities() const { return {.reads_neighbour_lists = true}; }
+    // How the scene's checks name it.
+    std::string label() const { return "effects.surface_tension"; }
 };
 
 inline const KeyTable<SurfaceTensionSettings>& surface_tension_keys() {
@@ -114,5 +118,10 @@ class SurfaceTension final : public Effect<D> {
     Real gamma_;
     std::vector<Vec<D>> normals_; // n_i, m (dimensionless in units of h)
 };
+
+template <int D>
+std::unique_ptr<Effect<D>> make_effect(const SurfaceTensionSettings& s) {
+    return std::make_unique<SurfaceTension<D>>(s.gamma);
+}
 
 } // namespace sph

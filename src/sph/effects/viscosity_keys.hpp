@@ -1,8 +1,11 @@
 #pragma once
 // The scene's `effects.viscosity`: one key for the two models of a fluid's
 // own viscosity, the seed's (seed_viscosity.hpp) and Morris's
-// (laminar_viscosity.hpp). mu 0 is no effect.
+// (laminar_viscosity.hpp). mu 0 is no effect. Morris's term joins the
+// single-precision passes; the seed's reads neighbour lists.
 
+#include "sph/effects/laminar_viscosity.hpp"
+#include "sph/effects/seed_viscosity.hpp"
 #include "sph/scene_key.hpp"
 
 #include <string>
@@ -10,8 +13,14 @@
 namespace sph {
 
 struct ViscositySettings {
+    static constexpr const char* key = "viscosity"; // in the scene's `effects`
     std::string model; // seed | morris; the scene's default: the solver's
     double mu = 0;     // Pa.s; the scene's default: material.viscosity
+    EffectCapabilities capabilities() const {
+        return {.reads_neighbour_lists = model != "morris"};
+    }
+    // How the scene's checks name it.
+    std::string label() const { return "effects.viscosity model " + model; }
 };
 
 inline const KeyTable<ViscositySettings>& viscosity_keys() {
@@ -29,6 +38,13 @@ inline const KeyTable<ViscositySettings>& viscosity_keys() {
          .bound = Bound::non_negative},
     };
     return keys;
+}
+
+template <int D>
+std::unique_ptr<Effect<D>> make_effect(const ViscositySettings& s) {
+    if (s.model == "seed")
+        return std::make_unique<SeedViscosity<D>>(s.mu);
+    return std::make_unique<LaminarViscosity<D>>(s.mu);
 }
 
 } // namespace sph

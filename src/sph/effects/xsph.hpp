@@ -21,7 +21,11 @@ namespace sph {
 
 // The scene's `effects.xsph`.
 struct XsphSettings {
+    static constexpr const char* key = "xsph"; // in the scene's `effects`
     double epsilon = 0.5; // fraction of the way to the neighbours' mean velocity, in (0, 1]
+    EffectCapabilities capabilities() const { return {.reads_neighbour_lists = true}; }
+    // How the scene's checks name it.
+    std::string label() const { return "effects.xsph"; }
 };
 
 inline const KeyTable<XsphSettings>& xsph_keys() {
@@ -64,5 +68,10 @@ class Xsph final : public Effect<D> {
   private:
     Real epsilon_;
 };
+
+template <int D>
+std::unique_ptr<Effect<D>> make_effect(const XsphSettings& s) {
+    return std::make_unique<Xsph<D>>(s.epsilon);
+}
 
 } // namespace sph

@@ -58,8 +58,6 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.h = derived.h;
     p.rest_density = scene.material.rest_density;
     p.bulk_modulus = scene.material.bulk_modulus;
-    // For the time step's viscous condition; the effect holds its own mu.
-    p.viscosity = scene.effects.viscosity ? scene.effects.viscosity->mu : 0;
     p.spacing = scene.fluid.spacing;
     p.kernel = kernel_kind(derived.kernel);
     p.integrator =

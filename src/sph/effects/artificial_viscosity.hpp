@@ -63,6 +63,9 @@ class ArtificialViscosity final : public Effect<D> {
   public:
     explicit ArtificialViscosity(Real alpha) : alpha_(alpha) {}
     std::string_view name() const override { return "artificial_viscosity"; }
+    // wcsph computes it with the pressure, over the same pairs.
+    static constexpr PressurePassTerm pressure_pass = PressurePassTerm::monaghan_viscosity;
+    PressurePassTerm pressure_pass_term() const override { return pressure_pass; }
     Real alpha() const { return alpha_; }
     MonaghanViscosity pair_viscosity(const Params<D>& params) const {
         return {2 * alpha_ * params.h * params.sound_speed(), Real(0.01) * params.h * params.h};

@@ -8,6 +8,7 @@
 #include "io/scene_paths.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
+#include "sph/solvers/solver.hpp"
 #include "sph/time_step.hpp"
 
 #include <algorithm>
@@ -106,9 +107,10 @@ double neighbours_within(int dimension, double radius) {
 
 // solver.kernel, "auto" resolved.
 std::string derive_kernel(const Scene& s) {
-    return s.solver.kernel != "auto" ? s.solver.kernel
-           : s.solver.name == "seed" ? "seed"
-                                     : "cubic_spline";
+    return s.solver.kernel != "auto"
+               ? s.solver.kernel
+               : std::string(kernel_kind_names[static_cast<std::size_t>(
+                     solver_capabilities(s.solver.name).default_kernel)]);
 }
 
 double default_smoothing_ratio(int dimension) {
@@ -163,10 +165,10 @@ std::optional<S> read_effect(FieldReader& r, const std::string& name, const KeyT
 // means the effect is not in the step.
 void read_effects(FieldReader& r, Scene& s) {
     const bool listed = r.present("effects");
-    const bool wcsph = s.solver.name == "wcsph";
+    const SolverCapabilities& solver = solver_capabilities(s.solver.name);
     // The values of keys an effect leaves out: the settings' own defaults,
     // but for mu and alpha, which the scene gives elsewhere.
-    const ViscositySettings implied_viscosity{s.solver.name == "seed" ? "seed" : "morris",
+    const ViscositySettings implied_viscosity{std::string(solver.viscosity_model),
                                               s.material.viscosity};
     const ArtificialViscositySettings solver_alpha{s.solver.artificial_viscosity};
     auto fallback = [&]<class S>(const S&) {
@@ -191,7 +193,8 @@ void read_effects(FieldReader& r, Scene& s) {
         s.effects.viscosity = implied_viscosity;
     if (s.effects.artificial_viscosity && !(s.effects.artificial_viscosity->alpha > 0))
         s.effects.artificial_viscosity.reset();
-    else if (!r.present("effects.artificial_viscosity") && wcsph && solver_alpha.alpha > 0)
+    else if (!r.present("effects.artificial_viscosity") && solver.default_artificial_viscosity &&
+             solver_alpha.alpha > 0)
         s.effects.artificial_viscosity = solver_alpha;
     if (s.effects.xsph && s.effects.xsph->epsilon > 1)
         r.fail("effects.xsph.epsilon",
@@ -222,6 +225,7 @@ void check_output_name(const FieldReader& r, const Scene& s) {
 
 // The solver's keys against each other and against what the solver can do.
 void check_solver(const FieldReader& r, const Scene& s) {
+    const SolverCapabilities& solver = solver_capabilities(s.solver.name);
     if (s.solver.dt_min > s.solver.dt_max)
         r.fail("solver.dt_min", fmt::format("must not exceed solver.dt_max ({} s), got {} s",
                                             s.solver.dt_max, s.solver.dt_min));
@@ -229,7 +233,7 @@ void check_solver(const FieldReader& r, const Scene& s) {
         r.fail("solver.min_iterations",
                fmt::format("must not exceed solver.max_iterations ({}), got {}",
                            s.solver.max_iterations, s.solver.min_iterations));
-    if (s.solver.name == "dfsph" && s.solver.integrator != "symplectic_euler")
+    if (!solver.supports_verlet && s.solver.integrator == "verlet")
         r.fail("solver.integrator",
                "dfsph integrates with its own scheme (symplectic Euler between its two pressure "
                "solves); verlet is for the seed and wcsph solvers");
@@ -238,14 +242,14 @@ void check_solver(const FieldReader& r, const Scene& s) {
         if (!obstacle.empty())
             r.fail("solver.precision", "single: " + obstacle);
     }
-    if (s.solver.name == "seed" && s.solver.walls == "particles")
+    if (!solver.wall_particles && s.solver.walls == "particles")
         r.fail("solver.walls", "the seed solver's walls reflect; boundary particles are for "
                                "wcsph and dfsph");
-    if (s.solver.name == "seed" && !s.effects.obstacles.empty())
+    if (!solver.wall_particles && !s.effects.obstacles.empty())
         r.fail("effects.obstacles", "obstacles are made of boundary particles, which the seed "
                                     "solver (reflecting walls) does not have; use "
                                     "solver.name=wcsph or dfsph");
-    if (s.solver.name == "seed" && !s.effects.paddles.empty())
+    if (!solver.wall_particles && !s.effects.paddles.empty())
         r.fail("effects.paddles", "paddles are made of boundary particles, which the seed "
                                   "solver (reflecting walls) does not have; use "
                                   "solver.name=wcsph or dfsph");
@@ -362,7 +366,8 @@ void check_size(const FieldReader& r, const Scene& s, double h) {
     // Boundary particles (solver.walls = particles) fill layers around the
     // domain, and their lookup grid covers it.
     const bool wall_particles =
-        s.solver.walls == "particles" || (s.solver.walls == "auto" && s.solver.name != "seed");
+        s.solver.walls == "particles" ||
+        (s.solver.walls == "auto" && solver_capabilities(s.solver.name).wall_particles);
     double boundary = 0, grid_cells = 0;
     if (wall_particles) {
         const double layers = std::ceil(support);
@@ -571,11 +576,9 @@ std::vector<KeyDoc> scene_keys() {
 }
 
 KernelKind kernel_kind(const std::string& name) {
-    if (name == "cubic_spline")
-        return KernelKind::cubic_spline;
-    if (name == "wendland_c2")
-        return KernelKind::wendland_c2;
-    return KernelKind::seed;
+    const auto at = std::find(kernel_kind_names.begin(), kernel_kind_names.end(), name);
+    return at == kernel_kind_names.end() ? KernelKind::seed
+                                         : static_cast<KernelKind>(at - kernel_kind_names.begin());
 }
 
 TimeStepSettings time_step_settings(const Scene& s) {
@@ -589,11 +592,11 @@ TimeStepSettings time_step_settings(const Scene& s) {
 }
 
 std::string single_precision_obstacle(const Scene& s, const std::string& kernel) {
-    if (s.solver.name != "wcsph")
+    if (!solver_capabilities(s.solver.name).single_precision)
         return fmt::format("the single-precision passes are wcsph's; the {} solver computes in "
                            "double",
                            s.solver.name);
-    if (kernel == "seed")
+    if (!smooth_at_origin(kernel_kind(kernel)))
         return "the seed kernel's spiky gradient needs the double passes' rule for coincident "
                "particles; use solver.kernel cubic_spline or wendland_c2";
     if (s.solver.neighbour_search != "sorted_grid")
@@ -624,9 +627,9 @@ Derived derive(const Scene& s) {
     d.precision = s.solver.precision != "auto" ? s.solver.precision
                   : dim == 2 && single_precision_obstacle(s, d.kernel).empty() ? "single"
                                                                                 : "double";
-    d.walls = s.solver.walls != "auto"  ? s.solver.walls
-              : s.solver.name == "seed" ? "reflect"
-                                        : "particles";
+    d.walls = s.solver.walls != "auto"                            ? s.solver.walls
+              : solver_capabilities(s.solver.name).wall_particles ? "particles"
+                                                                  : "reflect";
     if (s.fluid.mass) {
         d.mass = *s.fluid.mass;
     } else {
@@ -688,7 +691,7 @@ Derived derive(const Scene& s) {
             time_step_settings(s),
             {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density,
              s.effects.viscosity ? s.effects.viscosity->mu : 0.0},
-            {.carries_sound = s.solver.name != "dfsph"}, {0, std::sqrt(g)});
+            {.carries_sound = solver_capabilities(s.solver.name).carries_sound}, {0, std::sqrt(g)});
     }
     for (const auto& b : s.fluid.blocks) {
         std::size_t count = 1;

@@ -7,6 +7,12 @@
 
 namespace sph {
 
+// Reflecting walls only; the seed's kernel and viscosity term by default.
+inline constexpr SolverCapabilities seed_capabilities{.name = "seed",
+                                                      .wall_particles = false,
+                                                      .default_kernel = KernelKind::seed,
+                                                      .viscosity_model = "seed"};
+
 // Its step (compute_accelerations, then the integrator of explicit_solver.hpp):
 // neighbours, density, linear pressure, the seed's pair force, effects. With
 // the seed's kernel and symplectic Euler it is the report's model exactly;

@@ -106,11 +106,8 @@ double neighbours_within(int dimension, double radius) {
 }
 
 // solver.kernel, "auto" resolved.
-std::string derive_kernel(const Scene& s) {
-    return s.solver.kernel != "auto"
-               ? s.solver.kernel
-               : std::string(kernel_kind_names[static_cast<std::size_t>(
-                     solver_capabilities(s.solver.name).default_kernel)]);
+KernelKind derive_kernel(const Scene& s) {
+    return s.solver.kernel.value_or(solver_capabilities(s.solver.name).default_kernel);
 }
 
 double default_smoothing_ratio(int dimension) {
@@ -168,8 +165,7 @@ void read_effects(FieldReader& r, Scene& s) {
     const SolverCapabilities& solver = solver_capabilities(s.solver.name);
     // The values of keys an effect leaves out: the settings' own defaults,
     // but for mu and alpha, which the scene gives elsewhere.
-    const ViscositySettings implied_viscosity{std::string(solver.viscosity_model),
-                                              s.material.viscosity};
+    const ViscositySettings implied_viscosity{solver.viscosity_model, s.material.viscosity};
     const ArtificialViscositySettings solver_alpha{s.solver.artificial_viscosity};
     auto fallback = [&]<class S>(const S&) {
         if constexpr (std::is_same_v<S, ViscositySettings>)
@@ -233,16 +229,16 @@ void check_solver(const FieldReader& r, const Scene& s) {
         r.fail("solver.min_iterations",
                fmt::format("must not exceed solver.max_iterations ({}), got {}",
                            s.solver.max_iterations, s.solver.min_iterations));
-    if (!solver.supports_verlet && s.solver.integrator == "verlet")
+    if (!solver.supports_verlet && s.solver.integrator == Integrator::verlet)
         r.fail("solver.integrator",
                "dfsph integrates with its own scheme (symplectic Euler between its two pressure "
                "solves); verlet is for the seed and wcsph solvers");
-    if (s.solver.precision == "single") {
+    if (s.solver.precision == Precision::single) {
         const std::string obstacle = single_precision_obstacle(s, derive_kernel(s));
         if (!obstacle.empty())
             r.fail("solver.precision", "single: " + obstacle);
     }
-    if (!solver.wall_particles && s.solver.walls == "particles")
+    if (!solver.wall_particles && s.solver.walls == WallModel::particles)
         r.fail("solver.walls", "the seed solver's walls reflect; boundary particles are for "
                                "wcsph and dfsph");
     if (!solver.wall_particles && !s.effects.obstacles.empty())
@@ -366,8 +362,8 @@ void check_size(const FieldReader& r, const Scene& s, double h) {
     // Boundary particles (solver.walls = particles) fill layers around the
     // domain, and their lookup grid covers it.
     const bool wall_particles =
-        s.solver.walls == "particles" ||
-        (s.solver.walls == "auto" && solver_capabilities(s.solver.name).wall_particles);
+        s.solver.walls == WallModel::particles ||
+        (!s.solver.walls && solver_capabilities(s.solver.name).wall_particles);
     double boundary = 0, grid_cells = 0;
     if (wall_particles) {
         const double layers = std::ceil(support);
@@ -575,12 +571,6 @@ std::vector<KeyDoc> scene_keys() {
     return docs;
 }
 
-KernelKind kernel_kind(const std::string& name) {
-    const auto at = std::find(kernel_kind_names.begin(), kernel_kind_names.end(), name);
-    return at == kernel_kind_names.end() ? KernelKind::seed
-                                         : static_cast<KernelKind>(at - kernel_kind_names.begin());
-}
-
 TimeStepSettings time_step_settings(const Scene& s) {
     TimeStepSettings t;
     t.fixed = s.solver.dt.has_value();
@@ -591,12 +581,12 @@ TimeStepSettings time_step_settings(const Scene& s) {
     return t;
 }
 
-std::string single_precision_obstacle(const Scene& s, const std::string& kernel) {
+std::string single_precision_obstacle(const Scene& s, KernelKind kernel) {
     if (!solver_capabilities(s.solver.name).single_precision)
         return fmt::format("the single-precision passes are wcsph's; the {} solver computes in "
                            "double",
                            s.solver.name);
-    if (!smooth_at_origin(kernel_kind(kernel)))
+    if (!smooth_at_origin(kernel))
         return "the seed kernel's spiky gradient needs the double passes' rule for coincident "
                "particles; use solver.kernel cubic_spline or wendland_c2";
     if (s.solver.neighbour_search != "sorted_grid")
@@ -624,17 +614,17 @@ Derived derive(const Scene& s) {
     // auto: single in 2D where it can run. In 3D the 27 cells around a
     // cell hold six candidates per neighbour, and single measured even with
     // double for 27% more memory (README, "Single precision").
-    d.precision = s.solver.precision != "auto" ? s.solver.precision
-                  : dim == 2 && single_precision_obstacle(s, d.kernel).empty() ? "single"
-                                                                                : "double";
-    d.walls = s.solver.walls != "auto"                            ? s.solver.walls
-              : solver_capabilities(s.solver.name).wall_particles ? "particles"
-                                                                  : "reflect";
+    d.precision = s.solver.precision                                     ? *s.solver.precision
+                  : dim == 2 && single_precision_obstacle(s, d.kernel).empty() ? Precision::single
+                                                                   : Precision::double_precision;
+    d.walls = s.solver.walls.value_or(solver_capabilities(s.solver.name).wall_particles
+                                          ? WallModel::particles
+                                          : WallModel::reflect);
     if (s.fluid.mass) {
         d.mass = *s.fluid.mass;
     } else {
         // The density kernel's sum on the lattice: a lattice particle gets exactly rho0.
-        const KernelKind kind = kernel_kind(d.kernel);
+        const KernelKind kind = d.kernel;
         const double sum =
             dim == 2 ? with_kernel<2>(
                            kind, d.h,

@@ -151,9 +151,9 @@ struct Derived {
     double mass = 0; // kg
     double dt = 0;   // s, the fixed step, or the adaptive rule's first step
     bool fixed_dt = false;
-    std::string kernel;     // solver.kernel resolved
-    std::string walls;      // solver.walls resolved
-    std::string precision;  // solver.precision resolved: single | double
+    KernelKind kernel = KernelKind::seed;            // solver.kernel resolved
+    WallModel walls = WallModel::reflect;            // solver.walls resolved
+    Precision precision = Precision::double_precision; // solver.precision resolved
     double sound_speed = 0; // m/s, sqrt(K / rho0)
     double max_speed = 0;   // m/s, watchdog.max_speed resolved
     // Lattice sites of the blocks; the sites in or beside obstacles are left
@@ -190,9 +190,7 @@ std::vector<KeyDoc> scene_keys();
 Derived derive(const Scene& scene);
 // Why solver.precision "single" cannot run this scene (the resolved kernel
 // given); empty when it can. "auto" is single exactly when this is empty.
-std::string single_precision_obstacle(const Scene& scene, const std::string& kernel);
-// solver.kernel's name (resolved, not "auto") as the core's enum.
-KernelKind kernel_kind(const std::string& name);
+std::string single_precision_obstacle(const Scene& scene, KernelKind kernel);
 // The solver.dt / cfl / dt_min / dt_max keys as the core's settings.
 TimeStepSettings time_step_settings(const Scene& scene);
 // The scene as resolved: all fields, derived values filled in; feeding it back

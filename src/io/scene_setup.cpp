@@ -59,10 +59,9 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.rest_density = scene.material.rest_density;
     p.bulk_modulus = scene.material.bulk_modulus;
     p.spacing = scene.fluid.spacing;
-    p.kernel = kernel_kind(derived.kernel);
-    p.integrator =
-        scene.solver.integrator == "verlet" ? Integrator::verlet : Integrator::symplectic_euler;
-    p.walls = derived.walls == "particles" ? WallModel::particles : WallModel::reflect;
+    p.kernel = derived.kernel;
+    p.integrator = scene.solver.integrator;
+    p.walls = derived.walls;
     p.time_step = time_step_settings(scene);
     p.pressure_solve = {scene.solver.tolerance, scene.solver.divergence_tolerance,
                         scene.solver.min_iterations, scene.solver.max_iterations,
@@ -71,8 +70,7 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                   scene.watchdog.max_displacement, derived.max_speed,
                   !scene.watchdog.max_speed.has_value()};
     p.reorder_every = scene.solver.reorder_every;
-    p.precision =
-        derived.precision == "single" ? Precision::single : Precision::double_precision;
+    p.precision = derived.precision;
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     p.obstacles = make_obstacles<D>(scene);
     p.paddles = make_paddles<D>(scene);

@@ -74,4 +74,16 @@ constexpr EnumField<typename MemberOf<decltype(M)>::Struct> enum_field() {
             [](S& s, int i) { s.*M = static_cast<E>(i); }};
 }
 
+// The EnumField of member M, a std::optional of such an enum whose first
+// choice is "auto": nullopt, resolved from the rest of the scene.
+template <auto M>
+constexpr EnumField<typename MemberOf<decltype(M)>::Struct> auto_enum_field() {
+    using S = typename MemberOf<decltype(M)>::Struct;
+    using E = typename MemberOf<decltype(M)>::Type::value_type;
+    return {[](const S& s) { return (s.*M) ? static_cast<int>(*(s.*M)) + 1 : 0; },
+            [](S& s, int i) {
+                s.*M = i == 0 ? std::optional<E>() : std::optional(static_cast<E>(i - 1));
+            }};
+}
+
 } // namespace sph

@@ -8,25 +8,30 @@
 #include "sph/effects/seed_viscosity.hpp"
 #include "sph/scene_key.hpp"
 
+#include <array>
 #include <string>
 
 namespace sph {
 
+enum class ViscosityModel { seed, morris };
+inline constexpr std::array<const char*, 2> viscosity_model_names{"seed", "morris"};
+
 struct ViscositySettings {
     static constexpr const char* key = "viscosity"; // in the scene's `effects`
-    std::string model; // seed | morris; the scene's default: the solver's
+    ViscosityModel model = ViscosityModel::morris; // the scene's default: the solver's
     double mu = 0;     // Pa.s; the scene's default: material.viscosity
     EffectCapabilities capabilities() const {
-        return {.reads_neighbour_lists = model != "morris"};
+        return {.reads_neighbour_lists = model != ViscosityModel::morris};
     }
     // How the scene's checks name it.
-    std::string label() const { return "effects.viscosity model " + model; }
+    std::string label() const { return std::string("effects.viscosity model ") +
+               viscosity_model_names[static_cast<std::size_t>(model)]; }
 };
 
 inline const KeyTable<ViscositySettings>& viscosity_keys() {
     static const KeyTable<ViscositySettings> keys{
         {.path = "model",
-         .field = &ViscositySettings::model,
+         .field = enum_field<&ViscositySettings::model>(),
          .doc = "Viscosity effect: seed (the report's term, Müller et al. 2003) or morris "
                 "(Morris et al. 1997, laminar, suited to very viscous fluids, no-slip walls).",
          .choices = {"seed", "morris"},
@@ -42,7 +47,7 @@ inline const KeyTable<ViscositySettings>& viscosity_keys() {
 
 template <int D>
 std::unique_ptr<Effect<D>> make_effect(const ViscositySettings& s) {
-    if (s.model == "seed")
+    if (s.model == ViscosityModel::seed)
         return std::make_unique<SeedViscosity<D>>(s.mu);
     return std::make_unique<LaminarViscosity<D>>(s.mu);
 }

@@ -11,7 +11,7 @@ namespace sph {
 inline constexpr SolverCapabilities seed_capabilities{.name = "seed",
                                                       .wall_particles = false,
                                                       .default_kernel = KernelKind::seed,
-                                                      .viscosity_model = "seed"};
+                                                      .viscosity_model = ViscosityModel::seed};
 
 // Its step (compute_accelerations, then the integrator of explicit_solver.hpp):
 // neighbours, density, linear pressure, the seed's pair force, effects. With

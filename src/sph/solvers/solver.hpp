@@ -4,6 +4,7 @@
 
 #include "sph/boundary_particles.hpp"
 #include "sph/effects/effect.hpp"
+#include "sph/effects/viscosity_keys.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
 #include "sph/paddles.hpp"
 #include "sph/stage_times.hpp"
@@ -116,7 +117,7 @@ struct SolverCapabilities {
     KernelKind default_kernel = KernelKind::cubic_spline; // solver.kernel auto
     // solver.artificial_viscosity applies without an effects.artificial_viscosity key.
     bool default_artificial_viscosity = false;
-    std::string_view viscosity_model = "morris"; // effects.viscosity's default model
+    ViscosityModel viscosity_model = ViscosityModel::morris; // effects.viscosity's default model
 };
 
 // Names accepted by make_solver (`solver.name`), in the order the README lists them.

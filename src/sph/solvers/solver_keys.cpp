@@ -14,7 +14,7 @@ const KeyTable<SolverSettings>& solver_keys() {
                 "(Bender & Koschier 2017).",
          .choices = solver_names()},
         {.path = "kernel",
-         .field = &S::kernel,
+         .field = auto_enum_field<&S::kernel>(),
          .doc = "Smoothing kernel: seed (poly6 values, spiky gradients), cubic_spline or "
                 "wendland_c2; auto: seed for the seed solver, cubic_spline for the others.",
          .choices = {"auto", "seed", "cubic_spline", "wendland_c2"}},
@@ -41,12 +41,12 @@ const KeyTable<SolverSettings>& solver_keys() {
          .doc = "Largest adaptive step.",
          .bound = Bound::positive},
         {.path = "integrator",
-         .field = &S::integrator,
+         .field = enum_field<&S::integrator>(),
          .doc = "Time integrator of seed and wcsph: symplectic_euler (first order, the seed's) "
                 "or verlet (kick-drift-kick, second order).",
          .choices = {"symplectic_euler", "verlet"}},
         {.path = "walls",
-         .field = &S::walls,
+         .field = auto_enum_field<&S::walls>(),
          .doc = "Domain walls: reflect (the seed's) or particles (Akinci et al. 2012 boundary "
                 "particles); auto: reflect for seed, particles for the others.",
          .choices = {"auto", "reflect", "particles"}},
@@ -89,7 +89,7 @@ const KeyTable<SolverSettings>& solver_keys() {
          .min = 0,
          .max = 1000000},
         {.path = "precision",
-         .field = &S::precision,
+         .field = auto_enum_field<&S::precision>(),
          .doc = "Arithmetic of wcsph's density and pressure passes: single (float, a grid cell "
                 "at a time, no neighbour lists; 1.3-1.8x faster in 2D, even in 3D for more "
                 "memory) or double (neighbour lists); auto: single in 2D where it can run "

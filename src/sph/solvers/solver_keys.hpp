@@ -14,13 +14,13 @@ namespace sph {
 
 struct SolverSettings {
     std::string name = "seed";                   // seed | wcsph | dfsph
-    std::string kernel = "auto";                 // auto | seed | cubic_spline | wendland_c2
+    std::optional<KernelKind> kernel;            // none: auto, the solver's default
     std::optional<double> dt;                    // s; fixed step; default adaptive
     double cfl = TimeStepSettings{}.cfl;         // Courant number of the adaptive step
     double dt_min = TimeStepSettings{}.dt_min;   // s
     double dt_max = TimeStepSettings{}.dt_max;   // s
-    std::string integrator = "symplectic_euler"; // symplectic_euler | verlet
-    std::string walls = "auto";                  // auto | reflect | particles
+    Integrator integrator = Integrator::symplectic_euler;
+    std::optional<WallModel> walls;              // none: auto, the solver's default
     double artificial_viscosity = 0.02;          // alpha (wcsph; see effects)
     double tolerance = PressureSolveSettings{}.tolerance;                       // % (dfsph)
     double divergence_tolerance = PressureSolveSettings{}.divergence_tolerance; // % per step
@@ -31,9 +31,9 @@ struct SolverSettings {
     std::string neighbour_search = "sorted_grid";
     // Steps between spatial sorts of the particle arrays by cell; 0: never.
     int reorder_every = 20;
-    // auto | single | double: the arithmetic of wcsph's density and
-    // pressure passes (sph/single_precision/cell_passes.hpp).
-    std::string precision = "auto";
+    // The arithmetic of wcsph's density and pressure passes
+    // (sph/single_precision/cell_passes.hpp); none: auto.
+    std::optional<Precision> precision;
 };
 
 // The keys of `solver`, in the order `sphclip keys` lists them.

@@ -81,7 +81,7 @@ TEST_CASE("the built-in scene is the 2D dam break", "[scene]") {
     CHECK(s.fluid.blocks[0].max[0] == Approx(0.05715));
     CHECK(s.fluid.blocks[0].max[1] == Approx(0.1143));
     REQUIRE(s.effects.gravity);
-    CHECK((*s.effects.gravity)[1] == Approx(-9.81));
+    CHECK(s.effects.gravity->acceleration[1] == Approx(-9.81));
 
     const sph::Derived d = sph::derive(s);
     CHECK(d.particles == 40 * 80);
@@ -397,8 +397,8 @@ TEST_CASE("gravity is on by default and off in an effects object without it", "[
     SECTION("no effects key: the default gravity") {
         const Scene s = parse(small_2d());
         REQUIRE(s.effects.gravity);
-        CHECK((*s.effects.gravity)[0] == 0);
-        CHECK((*s.effects.gravity)[1] == Approx(-9.81));
+        CHECK(s.effects.gravity->acceleration[0] == 0);
+        CHECK(s.effects.gravity->acceleration[1] == Approx(-9.81));
     }
     SECTION("an empty effects object: no gravity") {
         CHECK_FALSE(parse(with(small_2d(), "/effects", json::object())).effects.gravity);
@@ -409,14 +409,14 @@ TEST_CASE("gravity is on by default and off in an effects object without it", "[
     SECTION("--set effects.gravity=[0,0]: present and zero") {
         const Scene s = parse(small_2d(), {{"effects.gravity", "[0,0]"}});
         REQUIRE(s.effects.gravity);
-        CHECK((*s.effects.gravity)[0] == 0);
-        CHECK((*s.effects.gravity)[1] == 0);
+        CHECK(s.effects.gravity->acceleration[0] == 0);
+        CHECK(s.effects.gravity->acceleration[1] == 0);
     }
     SECTION("--set adds gravity to a scene whose effects have none") {
         const Scene s =
             parse(with(small_2d(), "/effects", json::object()), {{"effects.gravity", "[0,-1]"}});
         REQUIRE(s.effects.gravity);
-        CHECK((*s.effects.gravity)[1] == -1);
+        CHECK(s.effects.gravity->acceleration[1] == -1);
     }
 }
 
@@ -467,7 +467,7 @@ TEST_CASE("3D scenes take 3-vectors and refuse 2-vectors", "[scene]") {
     CHECK(s.dimension == 3);
     CHECK(s.domain.max[2] == 0.1);
     REQUIRE(s.effects.gravity);
-    CHECK((*s.effects.gravity)[1] == Approx(-9.81));
+    CHECK(s.effects.gravity->acceleration[1] == Approx(-9.81));
     const sph::Derived d = sph::derive(s);
     CHECK(d.particles == 6 * 6 * 6);
     CHECK(d.h == Approx(2.2 * 0.01));

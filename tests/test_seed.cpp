@@ -14,6 +14,7 @@ using namespace sph;
 namespace {
 
 constexpr Real pi = detail::pi;
+constexpr Real mu = 0.25; // Pa.s, the viscosity of every case
 
 template <int D>
 Params<D> small_params() {
@@ -22,7 +23,6 @@ Params<D> small_params() {
     p.h = 1.0;
     p.rest_density = 2.0;
     p.bulk_modulus = 3.0; // the seed's K' = K / rho0 = 1.5
-    p.viscosity = 0.25;
     p.domain = {Vec<D>(-10), Vec<D>(10)};
     return p;
 }
@@ -54,7 +54,7 @@ Vec<2> literal_seed_force_2d(const Params<2>& p, const State<2>& s, int i, int j
     const Real k = p.bulk_modulus / p.rest_density;
     return p.mass / (pi * std::pow(p.h, 4) * s.density[j]) * (1 - q) *
            (15 * k * (s.density[i] + s.density[j] - 2 * p.rest_density) * (1 - q) / q * r -
-            40 * p.viscosity * v);
+            40 * mu * v);
 }
 
 // Its 3D counterpart, derived in src/sph/solvers/seed.cpp.
@@ -65,7 +65,7 @@ Vec<3> literal_seed_force_3d(const Params<3>& p, const State<3>& s, int i, int j
     const Real k = p.bulk_modulus / p.rest_density;
     return p.mass / (pi * std::pow(p.h, 5) * s.density[j]) * (1 - q) *
            (22.5 * k * (s.density[i] + s.density[j] - 2 * p.rest_density) * (1 - q) / q * r -
-            45 * p.viscosity * v);
+            45 * mu * v);
 }
 
 template <int D>
@@ -86,10 +86,10 @@ TEST_CASE("seed density and force for a pair in 2D, by hand", "[seed]") {
     CHECK(s.density[0] == Approx(1.2672712343692165).epsilon(1e-14));
     CHECK(s.density[1] == Approx(1.2672712343692165).epsilon(1e-14));
     CHECK(s.pressure[0] == Approx(3.0 * (1.2672712343692165 - 2.0) / 2.0));
-    check_vec<2>(seed_pair_force(p, s, 0, 1), literal_seed_force_2d(p, s, 0, 1));
-    check_vec<2>(seed_pair_force(p, s, 1, 0), literal_seed_force_2d(p, s, 1, 0));
+    check_vec<2>(seed_pair_force(p, mu, s, 0, 1), literal_seed_force_2d(p, s, 0, 1));
+    check_vec<2>(seed_pair_force(p, mu, s, 1, 0), literal_seed_force_2d(p, s, 1, 0));
     // Both below rest density: the pressure term pulls the pair together.
-    const Vec<2> push = seed_pair_force(p, s, 0, 1);
+    const Vec<2> push = seed_pair_force(p, mu, s, 0, 1);
     CHECK(glm::dot(push, s.position[0] - s.position[1]) < 0);
 }
 
@@ -101,7 +101,7 @@ TEST_CASE("seed interaction for a triple in 2D: a_i = (1/rho_i) sum_j f_ij", "[s
     // Raise the pressure of one particle so the terms do not cancel.
     s.density[2] = 3.1;
     compute_pressure_linear(p, s);
-    compute_seed_interaction(p, list, s);
+    compute_seed_interaction(p, mu, list, s);
     for (int i = 0; i < 3; ++i) {
         Vec<2> sum(0);
         for (int j = 0; j < 3; ++j)
@@ -122,7 +122,7 @@ TEST_CASE("seed density and interaction for a triple in 3D", "[seed]") {
     for (int j = 1; j < 3; ++j)
         sum += std::pow(1 - glm::dot(s.position[j], s.position[j]), 3);
     CHECK(s.density[0] == Approx(315 * 0.7 / (64 * pi) * sum).epsilon(1e-13));
-    compute_seed_interaction(p, list, s);
+    compute_seed_interaction(p, mu, list, s);
     for (int i = 0; i < 3; ++i) {
         Vec<3> total(0);
         for (int j = 0; j < 3; ++j)
@@ -139,8 +139,8 @@ TEST_CASE("seed pair accelerations are exactly equal and opposite", "[seed]") {
     compute_fields(p, s, list);
     s.density[1] = 2.9; // unequal densities: f_ij != -f_ji, but f/rho is symmetric
     compute_pressure_linear(p, s);
-    const Vec<3> a01 = seed_pair_acceleration(p, s, 0, 1);
-    const Vec<3> a10 = seed_pair_acceleration(p, s, 1, 0);
+    const Vec<3> a01 = seed_pair_acceleration(p, mu, s, 0, 1);
+    const Vec<3> a10 = seed_pair_acceleration(p, mu, s, 1, 0);
     CHECK(a01 == -a10);
     CHECK(glm::length(a01) > 0);
 }
@@ -153,15 +153,15 @@ TEST_CASE("coincident particles get finite, opposite forces", "[seed]") {
     REQUIRE(list.pair_count() == 6);
     p.rest_density = 0.5; // compressed: positive pressure pushes them apart
     compute_pressure_linear(p, s);
-    compute_seed_interaction(p, list, s);
+    compute_seed_interaction(p, mu, list, s);
     for (int i = 0; i < 3; ++i) {
         CHECK(std::isfinite(s.acceleration[i].x));
         CHECK(std::isfinite(s.acceleration[i].y));
         CHECK(glm::length(s.acceleration[i]) > 0);
     }
-    CHECK(seed_pair_acceleration(p, s, 0, 1) == -seed_pair_acceleration(p, s, 1, 0));
+    CHECK(seed_pair_acceleration(p, mu, s, 0, 1) == -seed_pair_acceleration(p, mu, s, 1, 0));
     // The same direction every time: the pair's ids choose it.
-    CHECK(seed_pair_acceleration(p, s, 0, 1) == seed_pair_acceleration(p, s, 0, 1));
+    CHECK(seed_pair_acceleration(p, mu, s, 0, 1) == seed_pair_acceleration(p, mu, s, 0, 1));
     // Momentum: the pair terms cancel.
     const Vec<2> total = s.acceleration[0] + s.acceleration[1] + s.acceleration[2];
     CHECK(glm::length(total) < 1e-12 * glm::length(s.acceleration[0]));

@@ -150,22 +150,22 @@ TEST_CASE("single-precision cell passes agree with the double passes", "[single]
 
 TEST_CASE("solver.precision: auto picks single where it can run, single says why not",
           "[single]") {
-    CHECK(derive(default_scene({{"solver.name", "wcsph"}})).precision == "single");
+    CHECK(derive(default_scene({{"solver.name", "wcsph"}})).precision == Precision::single);
     // 3D: single only when asked for (even speed, more memory).
     CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"dimension", "3"}})).precision ==
-          "double");
+          Precision::double_precision);
     CHECK(derive(default_scene({{"solver.name", "wcsph"},
                                 {"dimension", "3"},
                                 {"solver.precision", "single"}}))
-              .precision == "single");
-    CHECK(derive(default_scene({{"solver.name", "dfsph"}})).precision == "double");
-    CHECK(derive(default_scene({{"solver.name", "seed"}})).precision == "double");
+              .precision == Precision::single);
+    CHECK(derive(default_scene({{"solver.name", "dfsph"}})).precision == Precision::double_precision);
+    CHECK(derive(default_scene({{"solver.name", "seed"}})).precision == Precision::double_precision);
     CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"solver.neighbour_search", "hash"}}))
-              .precision == "double");
+              .precision == Precision::double_precision);
     CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"effects.xsph.epsilon", "0.5"}})).precision ==
-          "double");
+          Precision::double_precision);
     CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"solver.precision", "double"}}))
-              .precision == "double");
+              .precision == Precision::double_precision);
     for (const std::vector<Override>& bad :
          {std::vector<Override>{{"solver.name", "dfsph"}},
           {{"solver.name", "wcsph"}, {"solver.kernel", "seed"}},

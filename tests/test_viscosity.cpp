@@ -126,9 +126,9 @@ TEST_CASE("the scene gets the viscosity effects it asks for", "[viscosity][effec
     // The time step's viscous condition sees the effect's mu, or none.
     {
         const Scene s = default_scene({{"effects", R"({"viscosity": {"mu": 7}})"}});
-        CHECK(make_params<2>(s, derive(s)).viscosity == 7);
+        CHECK(diffusion_viscosity(make_effects<2>(s)) == 7);
         const Scene none = default_scene({{"effects", "{}"}, {"material.viscosity", "0"}});
-        CHECK(make_params<2>(none, derive(none)).viscosity == 0);
+        CHECK(diffusion_viscosity(make_effects<2>(none)) == 0);
     }
 }
 

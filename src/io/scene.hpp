@@ -4,7 +4,14 @@
 // after Martin & Moyce 1952), filled from a JSON scene file and overridden by
 // `--set KEY=VALUE`. Vectors hold 3 components; a 2D scene uses the first 2.
 
+#include "sph/effects/artificial_viscosity.hpp"
+#include "sph/effects/gravity.hpp"
+#include "sph/effects/surface_tension.hpp"
+#include "sph/effects/viscosity_keys.hpp"
+#include "sph/effects/xsph.hpp"
 #include "sph/params.hpp"
+#include "sph/scene_key.hpp"
+#include "sph/solvers/solver_keys.hpp"
 
 #include <array>
 #include <filesystem>
@@ -15,8 +22,6 @@
 #include <vector>
 
 namespace sph {
-
-using Vec3 = std::array<double, 3>;
 
 struct FluidBlock {
     Vec3 min{0, 0, 0};               // m
@@ -91,52 +96,28 @@ struct Scene {
         double viscosity = 1.0;     // Pa.s (damps the seed model; docs/model.md)
     } material;
 
-    struct Solver {
-        std::string name = "seed";                   // seed | wcsph | dfsph
-        std::string kernel = "auto";                 // auto | seed | cubic_spline | wendland_c2
-        std::optional<double> dt;                    // s; fixed step; default adaptive
-        double cfl = 0.4;                            // Courant number of the adaptive step
-        double dt_min = 1e-7;                        // s
-        double dt_max = 5e-3;                        // s
-        std::string integrator = "symplectic_euler"; // symplectic_euler | verlet
-        std::string walls = "auto";                  // auto | reflect | particles
-        double artificial_viscosity = 0.02;          // alpha (wcsph; see effects)
-        double tolerance = 0.05;                     // % density error (dfsph)
-        double divergence_tolerance = 0.1;           // % per step (dfsph)
-        int min_iterations = 2;                      // dfsph
-        int max_iterations = 100;                    // dfsph
-        bool warm_start = false;                     // dfsph
-        // sorted_grid | hash (the seed's) | all_pairs
-        std::string neighbour_search = "sorted_grid";
-        // Steps between spatial sorts of the particle arrays by cell; 0: never.
-        int reorder_every = 20;
-        // auto | single | double: the arithmetic of wcsph's density and
-        // pressure passes (sph/single_precision/cell_passes.hpp).
-        std::string precision = "auto";
-    } solver;
+    SolverSettings solver; // sph/solvers/solver_keys.hpp
 
     // The per-step checks (sph/watchdog.hpp).
     struct Watchdog {
-        int retries = 4;                // halvings of a failed step before exit 3
-        double max_density_ratio = 10;  // rho / rho0 that counts as a collapse
-        double max_displacement = 1;    // support radii a particle may move per step
+        int retries = WatchdogSettings{}.retries; // halvings of a failed step before exit 3
+        double max_density_ratio = WatchdogSettings{}.max_density_ratio; // collapse: rho / rho0
+        double max_displacement = WatchdogSettings{}.max_displacement; // support radii per step
         std::optional<double> max_speed; // m/s; default from the scene (Derived::max_speed)
     } watchdog;
 
     // Each present key is an effect in the step; an absent one costs nothing.
+    // The settings and keys of each are declared in its file (sph/effects/).
     struct Effects {
-        std::optional<Vec3> gravity = Vec3{0, -9.81, 0}; // m/s^2
-        // Viscosity model and mu, from effects.viscosity or, without it, a
-        // material.viscosity above 0 with the solver's default model.
-        struct Viscosity {
-            std::string model; // seed | morris
-            double mu = 0;     // Pa.s
-        };
-        std::optional<Viscosity> viscosity;
-        // alpha: effects.artificial_viscosity, or solver.artificial_viscosity for wcsph.
-        std::optional<double> artificial_viscosity;
-        std::optional<double> xsph;            // epsilon of XSPH velocity smoothing
-        std::optional<double> surface_tension; // gamma (Akinci et al. 2013)
+        // On unless an `effects` object leaves it out.
+        std::optional<GravitySettings> gravity = GravitySettings{};
+        // From effects.viscosity or, without it, a material.viscosity above 0
+        // with the solver's default model.
+        std::optional<ViscositySettings> viscosity;
+        // effects.artificial_viscosity, or solver.artificial_viscosity for wcsph.
+        std::optional<ArtificialViscositySettings> artificial_viscosity;
+        std::optional<XsphSettings> xsph;
+        std::optional<SurfaceTensionSettings> surface_tension;
         std::vector<SceneObstacle> obstacles;            // static solids; none by default
         std::vector<SceneEmitter> emitters;              // fluid sources; none by default
         std::vector<ScenePaddle> paddles;                // moving boxes; none by default
@@ -170,9 +151,9 @@ struct Derived {
     double mass = 0; // kg
     double dt = 0;   // s, the fixed step, or the adaptive rule's first step
     bool fixed_dt = false;
-    std::string kernel;     // solver.kernel resolved
-    std::string walls;      // solver.walls resolved
-    std::string precision;  // solver.precision resolved: single | double
+    KernelKind kernel = KernelKind::seed;            // solver.kernel resolved
+    WallModel walls = WallModel::reflect;            // solver.walls resolved
+    Precision precision = Precision::double_precision; // solver.precision resolved
     double sound_speed = 0; // m/s, sqrt(K / rho0)
     double max_speed = 0;   // m/s, watchdog.max_speed resolved
     // Lattice sites of the blocks; the sites in or beside obstacles are left
@@ -209,9 +190,7 @@ std::vector<KeyDoc> scene_keys();
 Derived derive(const Scene& scene);
 // Why solver.precision "single" cannot run this scene (the resolved kernel
 // given); empty when it can. "auto" is single exactly when this is empty.
-std::string single_precision_obstacle(const Scene& scene, const std::string& kernel);
-// solver.kernel's name (resolved, not "auto") as the core's enum.
-KernelKind kernel_kind(const std::string& name);
+std::string single_precision_obstacle(const Scene& scene, KernelKind kernel);
 // The solver.dt / cfl / dt_min / dt_max keys as the core's settings.
 TimeStepSettings time_step_settings(const Scene& scene);
 // The scene as resolved: all fields, derived values filled in; feeding it back

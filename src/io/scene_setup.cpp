@@ -1,6 +1,7 @@
 #include "io/scene_setup.hpp"
 
 #include "io/input_error.hpp"
+#include "io/keys/effect_registry.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
 #include "sph/effects/emitter.hpp"
 #include "sph/effects/gravity.hpp"
@@ -57,13 +58,10 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.h = derived.h;
     p.rest_density = scene.material.rest_density;
     p.bulk_modulus = scene.material.bulk_modulus;
-    // For the time step's viscous condition; the effect holds its own mu.
-    p.viscosity = scene.effects.viscosity ? scene.effects.viscosity->mu : 0;
     p.spacing = scene.fluid.spacing;
-    p.kernel = kernel_kind(derived.kernel);
-    p.integrator =
-        scene.solver.integrator == "verlet" ? Integrator::verlet : Integrator::symplectic_euler;
-    p.walls = derived.walls == "particles" ? WallModel::particles : WallModel::reflect;
+    p.kernel = derived.kernel;
+    p.integrator = scene.solver.integrator;
+    p.walls = derived.walls;
     p.time_step = time_step_settings(scene);
     p.pressure_solve = {scene.solver.tolerance, scene.solver.divergence_tolerance,
                         scene.solver.min_iterations, scene.solver.max_iterations,
@@ -72,8 +70,7 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                   scene.watchdog.max_displacement, derived.max_speed,
                   !scene.watchdog.max_speed.has_value()};
     p.reorder_every = scene.solver.reorder_every;
-    p.precision =
-        derived.precision == "single" ? Precision::single : Precision::double_precision;
+    p.precision = derived.precision;
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     p.obstacles = make_obstacles<D>(scene);
     p.paddles = make_paddles<D>(scene);
@@ -125,21 +122,8 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
 template <int D>
 EffectList<D> make_effects(const Scene& scene) {
     EffectList<D> effects;
-    if (scene.effects.gravity)
-        effects.push_back(std::make_unique<Gravity<D>>(to_vec<D>(*scene.effects.gravity)));
-    if (const auto& viscosity = scene.effects.viscosity) {
-        if (viscosity->model == "seed")
-            effects.push_back(std::make_unique<SeedViscosity<D>>(viscosity->mu));
-        else
-            effects.push_back(std::make_unique<LaminarViscosity<D>>(viscosity->mu));
-    }
-    if (scene.effects.artificial_viscosity)
-        effects.push_back(
-            std::make_unique<ArtificialViscosity<D>>(*scene.effects.artificial_viscosity));
-    if (scene.effects.xsph)
-        effects.push_back(std::make_unique<Xsph<D>>(*scene.effects.xsph));
-    if (scene.effects.surface_tension)
-        effects.push_back(std::make_unique<SurfaceTension<D>>(*scene.effects.surface_tension));
+    for_each_effect(scene.effects,
+                    [&](const auto& settings) { effects.push_back(make_effect<D>(settings)); });
     for (std::size_t index = 0; index < scene.effects.emitters.size(); ++index) {
         const SceneEmitter& e = scene.effects.emitters[index];
         // The box's lattice, as for a fluid block; its thickness along v.

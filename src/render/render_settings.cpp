@@ -26,7 +26,7 @@ RenderSettings make_render_settings(const Scene& scene) {
     double g = 0;
     if (scene.effects.gravity)
         for (int a = 0; a < scene.dimension; ++a)
-            g += (*scene.effects.gravity)[a] * (*scene.effects.gravity)[a];
+            g += scene.effects.gravity->acceleration[a] * scene.effects.gravity->acceleration[a];
     g = std::sqrt(g);
     double block_speed = 0;
     for (const auto& b : scene.fluid.blocks)

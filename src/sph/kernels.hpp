@@ -18,8 +18,11 @@
 
 #include "sph/vec.hpp"
 
+#include <array>
 #include <concepts>
 #include <numbers>
+#include <string_view>
+#include <type_traits>
 
 namespace sph {
 
@@ -187,6 +190,9 @@ struct SeedKernel {
 
 // Kernels a scene can choose (`solver.kernel`).
 enum class KernelKind { seed, cubic_spline, wendland_c2 };
+// Their names in scenes, in the enum's order.
+inline constexpr std::array<std::string_view, 3> kernel_kind_names{"seed", "cubic_spline",
+                                                                   "wendland_c2"};
 
 // Calls f with a default-constructed kernel object of the chosen kind, so a
 // caller instantiates its loops once per kernel type and picks at run time.
@@ -201,6 +207,13 @@ decltype(auto) with_kernel(KernelKind kind, Real support, F&& f) {
         break;
     }
     return f(SeedKernel<D>(support));
+}
+
+// Whether the kernel's gradient / r is finite at r = 0 (Kernel::smooth_at_origin).
+inline bool smooth_at_origin(KernelKind kind) {
+    return with_kernel<2>(kind, 1, [](const auto& kernel) {
+        return std::decay_t<decltype(kernel)>::smooth_at_origin;
+    });
 }
 
 } // namespace sph

@@ -61,7 +61,6 @@ struct Params {
     Real spacing = 0;              // m, rest distance between particles
     Real rest_density = 0;         // kg/m^3
     Real bulk_modulus = 0;         // Pa, K in p = K (rho - rho0)
-    Real viscosity = 0;            // Pa.s, mu of the viscosity effect (0: none), for the time step
     Box<D> domain;                 // m, the walls
     // Static solids inside the domain, made of boundary particles (obstacles.hpp).
     std::vector<Obstacle<D>> obstacles;

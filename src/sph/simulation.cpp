@@ -109,7 +109,8 @@ Real Simulation<D>::next_dt() const {
     // A paddle moves the fluid beside it as fast as it goes itself.
     for (const Paddle<D>& paddle : params_.paddles)
         rates.max_speed = std::max(rates.max_speed, paddle.peak_speed());
-    return stable_time_step(params_, solver_->time_step_model(), rates);
+    return stable_time_step(params_, solver_->time_step_model(), rates,
+                            diffusion_viscosity(effects_));
 }
 
 template <int D>

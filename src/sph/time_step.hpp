@@ -49,12 +49,15 @@ struct TimeStepScales {
 Real stable_time_step(const TimeStepSettings& settings, const TimeStepScales& scales,
                       TimeStepModel model, ExtremeRates rates);
 
+// `viscosity`: the largest mu by which an effect limits the step
+// (diffusion_viscosity in effects/effect.hpp), 0 for none.
 template <int D>
-Real stable_time_step(const Params<D>& params, TimeStepModel model, ExtremeRates rates) {
+Real stable_time_step(const Params<D>& params, TimeStepModel model, ExtremeRates rates,
+                      Real viscosity) {
     return stable_time_step(
         params.time_step,
-        {params.h, params.spacing, params.sound_speed(), params.rest_density, params.viscosity},
-        model, rates);
+        {params.h, params.spacing, params.sound_speed(), params.rest_density, viscosity}, model,
+        rates);
 }
 
 } // namespace sph

@@ -108,10 +108,10 @@ struct Case {
 
     // The search's name, with the reordering when there is one, and
     // "+single" when the passes run in single precision (cells, no lists).
-    std::string search_label(const std::string& resolved_precision) const {
+    std::string search_label(Precision resolved_precision) const {
         const std::string label =
             reorder > 0 ? fmt::format("{}+reorder{}", search, reorder) : search;
-        return resolved_precision == "single" ? label + "+single" : label;
+        return resolved_precision == Precision::single ? label + "+single" : label;
     }
 };
 

@@ -44,7 +44,7 @@ namespace {
 
 template <int D>
 Real gravity_along(const Scene& scene, int axis) {
-    return scene.effects.gravity ? (*scene.effects.gravity)[axis] : 0;
+    return scene.effects.gravity ? scene.effects.gravity->acceleration[axis] : 0;
 }
 
 // Kinetic + potential + compression energy, J (per metre of depth in 2D).

@@ -18,6 +18,28 @@
 
 namespace sph {
 
+// The scene's `effects.artificial_viscosity`; alpha 0 is no effect.
+struct ArtificialViscositySettings {
+    static constexpr const char* key = "artificial_viscosity"; // in the scene's `effects`
+    // The scene reads its default from solver.artificial_viscosity.
+    double alpha = 0;
+    EffectCapabilities capabilities() const { return {}; }
+    // How the scene's checks name it.
+    std::string label() const { return "effects.artificial_viscosity"; }
+};
+
+inline const KeyTable<ArtificialViscositySettings>& artificial_viscosity_keys() {
+    static const KeyTable<ArtificialViscositySettings> keys{
+        {.path = "alpha",
+         .field = &ArtificialViscositySettings::alpha,
+         .doc = "Artificial viscosity effect (Monaghan 1992), its alpha; default "
+                "solver.artificial_viscosity. Without the key, wcsph uses "
+                "solver.artificial_viscosity and the other solvers none.",
+         .bound = Bound::non_negative},
+    };
+    return keys;
+}
+
 // Pi_ij of one pair, from v_ij . x_ij, rho_i + rho_j and r^2. Receding pairs
 // (v . x >= 0) give 0: a select, not a branch, and one division (the rest of
 // Pi grad W is products). At r = 0, v . x is 0 too.
@@ -41,6 +63,9 @@ class ArtificialViscosity final : public Effect<D> {
   public:
     explicit ArtificialViscosity(Real alpha) : alpha_(alpha) {}
     std::string_view name() const override { return "artificial_viscosity"; }
+    // wcsph computes it with the pressure, over the same pairs.
+    static constexpr PressurePassTerm pressure_pass = PressurePassTerm::monaghan_viscosity;
+    PressurePassTerm pressure_pass_term() const override { return pressure_pass; }
     Real alpha() const { return alpha_; }
     MonaghanViscosity pair_viscosity(const Params<D>& params) const {
         return {2 * alpha_ * params.h * params.sound_speed(), Real(0.01) * params.h * params.h};
@@ -94,5 +119,10 @@ class ArtificialViscosity final : public Effect<D> {
 
     Real alpha_;
 };
+
+template <int D>
+std::unique_ptr<Effect<D>> make_effect(const ArtificialViscositySettings& s) {
+    return std::make_unique<ArtificialViscosity<D>>(s.alpha);
+}
 
 } // namespace sph

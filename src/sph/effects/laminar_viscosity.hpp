@@ -55,6 +55,10 @@ class LaminarViscosity final : public Effect<D> {
   public:
     explicit LaminarViscosity(Real mu) : mu_(mu) {}
     std::string_view name() const override { return "viscosity"; }
+    Real diffusion_viscosity() const override { return mu_; }
+    // wcsph computes it with the pressure, over the same pairs.
+    static constexpr PressurePassTerm pressure_pass = PressurePassTerm::morris_viscosity;
+    PressurePassTerm pressure_pass_term() const override { return pressure_pass; }
     Real mu() const { return mu_; }
     MorrisViscosity pair_viscosity(const Params<D>& params) const {
         return {Real(0.0025) * params.h * params.h, 2 * mu_};

@@ -38,6 +38,10 @@ class SeedViscosity final : public Effect<D> {
   public:
     explicit SeedViscosity(Real mu) : mu_(mu) {}
     std::string_view name() const override { return "viscosity"; }
+    Real diffusion_viscosity() const override { return mu_; }
+    // The seed solver computes it inside its pair force.
+    static constexpr PressurePassTerm pressure_pass = PressurePassTerm::seed_viscosity;
+    PressurePassTerm pressure_pass_term() const override { return pressure_pass; }
     Real mu() const { return mu_; }
 
     void apply(const Params<D>& params, const EffectInputs<D>& in, State<D>& state) override {

@@ -22,6 +22,27 @@
 
 namespace sph {
 
+// The scene's `effects.surface_tension`.
+struct SurfaceTensionSettings {
+    static constexpr const char* key = "surface_tension"; // in the scene's `effects`
+    double gamma = 1.0; // the coefficient of cohesion and curvature
+    EffectCapabilities capabilities() const { return {.reads_neighbour_lists = true}; }
+    // How the scene's checks name it.
+    std::string label() const { return "effects.surface_tension"; }
+};
+
+inline const KeyTable<SurfaceTensionSettings>& surface_tension_keys() {
+    static const KeyTable<SurfaceTensionSettings> keys{
+        {.path = "gamma",
+         .field = &SurfaceTensionSettings::gamma,
+         .doc = "Surface tension effect (Akinci et al. 2013: cohesion and curvature), its "
+                "coefficient gamma; a drop in zero gravity becomes round. Absent: no surface "
+                "tension.",
+         .bound = Bound::positive},
+    };
+    return keys;
+}
+
 // Akinci et al. 2013, eq. 2, support radius h:
 //   C(r) = k (h - r)^3 r^3                 for h/2 < r <= h
 //   C(r) = k (2 (h - r)^3 r^3 - h^6 / 64)  for 0 < r <= h/2
@@ -97,5 +118,10 @@ class SurfaceTension final : public Effect<D> {
     Real gamma_;
     std::vector<Vec<D>> normals_; // n_i, m (dimensionless in units of h)
 };
+
+template <int D>
+std::unique_ptr<Effect<D>> make_effect(const SurfaceTensionSettings& s) {
+    return std::make_unique<SurfaceTension<D>>(s.gamma);
+}
 
 } // namespace sph

@@ -19,6 +19,27 @@
 
 namespace sph {
 
+// The scene's `effects.xsph`.
+struct XsphSettings {
+    static constexpr const char* key = "xsph"; // in the scene's `effects`
+    double epsilon = 0.5; // fraction of the way to the neighbours' mean velocity, in (0, 1]
+    EffectCapabilities capabilities() const { return {.reads_neighbour_lists = true}; }
+    // How the scene's checks name it.
+    std::string label() const { return "effects.xsph"; }
+};
+
+inline const KeyTable<XsphSettings>& xsph_keys() {
+    static const KeyTable<XsphSettings> keys{
+        {.path = "epsilon",
+         .field = &XsphSettings::epsilon,
+         .doc = "XSPH velocity smoothing effect (Monaghan 1989): each step draws a particle's "
+                "velocity this fraction of the way to its neighbours' mean; in (0, 1]. Absent: "
+                "none.",
+         .bound = Bound::positive},
+    };
+    return keys;
+}
+
 template <int D>
 class Xsph final : public Effect<D> {
   public:
@@ -47,5 +68,10 @@ class Xsph final : public Effect<D> {
   private:
     Real epsilon_;
 };
+
+template <int D>
+std::unique_ptr<Effect<D>> make_effect(const XsphSettings& s) {
+    return std::make_unique<Xsph<D>>(s.epsilon);
+}
 
 } // namespace sph

@@ -20,6 +20,10 @@
 
 namespace sph {
 
+// Incompressible: no sound condition on the step; its own integration scheme.
+inline constexpr SolverCapabilities dfsph_capabilities{
+    .name = "dfsph", .carries_sound = false, .supports_verlet = false};
+
 template <int D>
 class DfsphSolver final : public Solver<D> {
   public:

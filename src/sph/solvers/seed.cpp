@@ -18,7 +18,7 @@ SeedSolver<D>::SeedSolver(KernelKind kernel) : kernel_(kernel) {}
 template <int D>
 void SeedSolver<D>::compute_accelerations(const Params<D>& params, State<D>& state,
                                           StepContext<D>& context) {
-    const auto* viscosity = find_effect<SeedViscosity<D>>(context.effects);
+    const auto* viscosity = fused_effect<SeedViscosity<D>>(context.effects);
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours closer than h (the seed's spatial hash by default).
         context.find_neighbours(state.position, params.h);
@@ -99,18 +99,18 @@ struct SeedPressureTerm {
 } // namespace
 
 template <int D>
-Vec<D> seed_pair_acceleration(const Params<D>& params, const State<D>& state, std::size_t i,
-                              std::size_t j) {
+Vec<D> seed_pair_acceleration(const Params<D>& params, Real mu, const State<D>& state,
+                              std::size_t i, std::size_t j) {
     const SeedKernel<D> kernel(params.h);
     return SeedPressureTerm<D, SeedKernel<D>>{params, kernel}(state, i, j) +
-           seed_viscous_acceleration(params, ViscosityLaplacian<D>(params.h), params.viscosity,
+           seed_viscous_acceleration(params, ViscosityLaplacian<D>(params.h), mu,
                                      state, i, j);
 }
 
 template <int D>
-Vec<D> seed_pair_force(const Params<D>& params, const State<D>& state, std::size_t i,
+Vec<D> seed_pair_force(const Params<D>& params, Real mu, const State<D>& state, std::size_t i,
                        std::size_t j) {
-    return state.density[i] * seed_pair_acceleration(params, state, i, j);
+    return state.density[i] * seed_pair_acceleration(params, mu, state, i, j);
 }
 
 // Gather-style: each particle sums its own side of every pair, so threads
@@ -141,19 +141,23 @@ void compute_seed_pressure(const Params<D>& params, const Kernel& kernel,
 template class SeedSolver<2>;
 template class SeedSolver<3>;
 template <int D>
-void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
+void compute_seed_interaction(const Params<D>& params, Real mu, const NeighbourList& neighbours,
                               State<D>& state) {
-    const SeedViscosity<D> viscosity(params.viscosity);
+    const SeedViscosity<D> viscosity(mu);
     compute_seed_pressure(params, SeedKernel<D>(params.h), neighbours, &viscosity, state);
 }
 
-template void compute_seed_interaction<2>(const Params<2>&, const NeighbourList&, State<2>&);
-template void compute_seed_interaction<3>(const Params<3>&, const NeighbourList&, State<3>&);
-template Vec<2> seed_pair_force<2>(const Params<2>&, const State<2>&, std::size_t, std::size_t);
-template Vec<3> seed_pair_force<3>(const Params<3>&, const State<3>&, std::size_t, std::size_t);
-template Vec<2> seed_pair_acceleration<2>(const Params<2>&, const State<2>&, std::size_t,
+template void compute_seed_interaction<2>(const Params<2>&, Real, const NeighbourList&,
+                                           State<2>&);
+template void compute_seed_interaction<3>(const Params<3>&, Real, const NeighbourList&,
+                                           State<3>&);
+template Vec<2> seed_pair_force<2>(const Params<2>&, Real, const State<2>&, std::size_t,
+                                   std::size_t);
+template Vec<3> seed_pair_force<3>(const Params<3>&, Real, const State<3>&, std::size_t,
+                                   std::size_t);
+template Vec<2> seed_pair_acceleration<2>(const Params<2>&, Real, const State<2>&, std::size_t,
                                           std::size_t);
-template Vec<3> seed_pair_acceleration<3>(const Params<3>&, const State<3>&, std::size_t,
+template Vec<3> seed_pair_acceleration<3>(const Params<3>&, Real, const State<3>&, std::size_t,
                                           std::size_t);
 
 } // namespace sph

@@ -7,6 +7,12 @@
 
 namespace sph {
 
+// Reflecting walls only; the seed's kernel and viscosity term by default.
+inline constexpr SolverCapabilities seed_capabilities{.name = "seed",
+                                                      .wall_particles = false,
+                                                      .default_kernel = KernelKind::seed,
+                                                      .viscosity_model = ViscosityModel::seed};
+
 // Its step (compute_accelerations, then the integrator of explicit_solver.hpp):
 // neighbours, density, linear pressure, the seed's pair force, effects. With
 // the seed's kernel and symplectic Euler it is the report's model exactly;
@@ -31,19 +37,21 @@ class SeedSolver final : public ExplicitSolver<D> {
 
 // The seed's interaction force summed for every particle and divided by its
 // density: state.acceleration = (1 / rho_i) sum_j f_ij, by the one pass the
-// solver runs (pressure and viscous halves together). Exposed for tests.
+// solver runs (pressure and viscous halves together), mu the viscosity
+// (Pa.s). Exposed for tests.
 template <int D>
-void compute_seed_interaction(const Params<D>& params, const NeighbourList& neighbours,
+void compute_seed_interaction(const Params<D>& params, Real mu, const NeighbourList& neighbours,
                               State<D>& state);
 
-// f_ij / rho_i: the acceleration particle j gives particle i. Exposed for tests.
+// f_ij / rho_i: the acceleration particle j gives particle i, mu the
+// viscosity (Pa.s). Exposed for tests.
 template <int D>
-Vec<D> seed_pair_acceleration(const Params<D>& params, const State<D>& state, std::size_t i,
-                              std::size_t j);
+Vec<D> seed_pair_acceleration(const Params<D>& params, Real mu, const State<D>& state,
+                              std::size_t i, std::size_t j);
 
 // f_ij, the seed's force density on i from j. Exposed for tests.
 template <int D>
-Vec<D> seed_pair_force(const Params<D>& params, const State<D>& state, std::size_t i,
+Vec<D> seed_pair_force(const Params<D>& params, Real mu, const State<D>& state, std::size_t i,
                        std::size_t j);
 
 } // namespace sph

@@ -4,12 +4,29 @@
 #include "sph/solvers/seed.hpp"
 #include "sph/solvers/wcsph.hpp"
 
+#include <array>
 #include <stdexcept>
 
 namespace sph {
 
+namespace {
+// The solvers, in the order the README lists them.
+constexpr std::array<const SolverCapabilities*, 3> solvers{&seed_capabilities, &wcsph_capabilities,
+                                                           &dfsph_capabilities};
+} // namespace
+
 std::vector<std::string> solver_names() {
-    return {"seed", "wcsph", "dfsph"};
+    std::vector<std::string> names;
+    for (const auto* solver : solvers)
+        names.emplace_back(solver->name);
+    return names;
+}
+
+const SolverCapabilities& solver_capabilities(std::string_view name) {
+    for (const auto* solver : solvers)
+        if (solver->name == name)
+            return *solver;
+    throw std::invalid_argument("unknown solver: " + std::string(name));
 }
 
 template <int D>

@@ -4,6 +4,7 @@
 
 #include "sph/boundary_particles.hpp"
 #include "sph/effects/effect.hpp"
+#include "sph/effects/viscosity_keys.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
 #include "sph/paddles.hpp"
 #include "sph/stage_times.hpp"
@@ -104,8 +105,25 @@ class Solver {
     virtual void permute(std::span<const std::uint32_t> /*order*/) {}
 };
 
+// What a solver can do and what it chooses when the scene says "auto",
+// declared in its own file; the scene's checks and defaults ask these
+// rather than the solver's name.
+struct SolverCapabilities {
+    std::string_view name;          // solver.name
+    bool carries_sound = true;      // weakly compressible: the step is bounded by the sound speed
+    bool wall_particles = true;     // boundary particles: walls, obstacles, paddles
+    bool supports_verlet = true;    // solver.integrator verlet
+    bool single_precision = false;  // float passes over grid cells (solver.precision single)
+    KernelKind default_kernel = KernelKind::cubic_spline; // solver.kernel auto
+    // solver.artificial_viscosity applies without an effects.artificial_viscosity key.
+    bool default_artificial_viscosity = false;
+    ViscosityModel viscosity_model = ViscosityModel::morris; // effects.viscosity's default model
+};
+
 // Names accepted by make_solver (`solver.name`), in the order docs/scene-keys.md lists them.
 std::vector<std::string> solver_names();
+// The capabilities of the solver of that name (one of solver_names()).
+const SolverCapabilities& solver_capabilities(std::string_view name);
 
 template <int D>
 std::unique_ptr<Solver<D>> make_solver(std::string_view name, const Params<D>& params);

@@ -48,8 +48,8 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
     // Monaghan's artificial viscosity and Morris's laminar one, when the
     // scene names them, join the pressure pass (pressure_acceleration.hpp):
     // the stage "pressure" then times them too.
-    const auto* artificial = find_effect<ArtificialViscosity<D>>(context.effects);
-    const auto* laminar = find_effect<LaminarViscosity<D>>(context.effects);
+    const auto* artificial = fused_effect<ArtificialViscosity<D>>(context.effects);
+    const auto* laminar = fused_effect<LaminarViscosity<D>>(context.effects);
     const MonaghanViscosity monaghan =
         artificial ? artificial->pair_viscosity(params) : MonaghanViscosity{};
     const MorrisViscosity morris = laminar ? laminar->pair_viscosity(params) : MorrisViscosity{};

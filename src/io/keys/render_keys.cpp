@@ -1,0 +1,82 @@
+// The render object's keys: the scene's side of the renderer's settings
+// (render/frame_renderer.hpp turns them into its own).
+#include "io/keys/scene_keys.hpp"
+
+namespace sph {
+
+const KeyTable<Scene::Render>& render_keys() {
+    using S = Scene::Render;
+    static const KeyTable<S> keys{
+        {.path = "size",
+         .field = &S::size,
+         .unit = "px",
+         .doc = "Image width and height.",
+         .min = 1,
+         .max = 16384},
+        {.path = "colour",
+         .field = &S::colour,
+         .doc = "Field the particles are coloured by.",
+         .choices = {"velocity", "density", "pressure"}},
+        {.path = "colour_map",
+         .field = &S::colour_map,
+         .doc = "Colour map; auto: viridis for speed, diverging around rho0 for density, turbo "
+                "for pressure.",
+         .choices = {"auto", "viridis", "turbo", "diverging"}},
+        {.path = "range",
+         .field = &S::range,
+         .unit = "field unit",
+         .doc = "Field values at the two ends of the colour map; by default speed 0..sqrt(2 g "
+                "H), density rho0 +- 3%, pressure 0..rho0 g H (H: domain height).",
+         .absent = "from the scene"},
+        {.path = "spheres",
+         .field = &S::spheres,
+         .doc = "How spheres are drawn: ray-cast impostors (fast) or the seed's instanced "
+                "meshes.",
+         .choices = {"impostor", "mesh"}},
+        {.path = "cull_buried",
+         .field = &S::cull_buried,
+         .doc = "3D: skip particles buried under two full layers of fluid (a camera outside the "
+                "fluid cannot see them); false draws every particle."},
+        {.path = "video_quality",
+         .field = &S::video_quality,
+         .doc = "MP4 constant quality (x264 CRF): 0 lossless, 18-23 visually good, 51 worst.",
+         .min = 0,
+         .max = 51},
+        {.path = "video_preset",
+         .field = &S::video_preset,
+         .doc = "MP4 encoder speed: faster presets make larger files at the same quality.",
+         .choices = {"ultrafast", "superfast", "veryfast", "faster", "fast", "medium", "slow",
+                     "slower", "veryslow"}},
+        {.path = "backend",
+         .field = &S::backend,
+         .doc = "Headless GL context.",
+         .choices = {"auto", "egl", "osmesa"}},
+    };
+    return keys;
+}
+
+const KeyTable<Scene::Render::Camera>& camera_keys() {
+    using S = Scene::Render::Camera;
+    static const KeyTable<S> keys{
+        {.path = "position",
+         .field = &S::position,
+         .unit = "m",
+         .doc = "Camera position (3D scenes).",
+         .absent = "frames the domain",
+         .size = VectorSize::three},
+        {.path = "target",
+         .field = &S::target,
+         .unit = "m",
+         .doc = "Point the camera looks at (3D scenes).",
+         .absent = "domain centre",
+         .size = VectorSize::three},
+        {.path = "fov",
+         .field = &S::fov,
+         .unit = "degrees",
+         .doc = "Vertical field of view (3D scenes).",
+         .bound = Bound::positive},
+    };
+    return keys;
+}
+
+} // namespace sph

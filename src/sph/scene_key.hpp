@@ -1,0 +1,89 @@
+#pragma once
+// A scene key declared as data, next to the component that owns it: its
+// path, the settings field it fills (a member pointer), its unit, bounds and
+// one-line doc. Its default is the field's initialiser in the settings
+// struct, written once. One table of keys per settings struct; io/ walks the
+// tables to read a scene with its checks, write run.json's `scene` and list
+// the keys (`sphclip keys`), so this header knows nothing of JSON.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+namespace sph {
+
+using Vec3 = std::array<double, 3>;
+
+// The range a number key must lie in.
+enum class Bound { any, positive, non_negative };
+
+// How many numbers a vector key holds: one per dimension of the scene, or fixed.
+enum class VectorSize { dimension, two, three };
+
+// An enumerated key's field, read and written as its index in Key::choices
+// (the enum's values in the order of their names).
+template <class S>
+struct EnumField {
+    int (*get)(const S&);
+    void (*set)(S&, int);
+};
+
+// The field of S a key fills. A std::string field is a choice among
+// Key::choices; an optional one is free text.
+template <class S>
+using KeyField =
+    std::variant<double S::*, std::optional<double> S::*, int S::*, bool S::*, std::string S::*,
+                 std::optional<std::string> S::*, Vec3 S::*, std::optional<Vec3> S::*,
+                 std::array<int, 2> S::*, std::optional<std::array<double, 2>> S::*, EnumField<S>>;
+
+template <class S>
+struct Key {
+    std::string path{}; // below its table's prefix ("" for the prefix itself)
+    KeyField<S> field{};
+    std::string unit{};
+    std::string doc{};
+    Bound bound = Bound::any;         // number keys
+    int min = 0, max = 0;             // integer keys (and each number of an image size)
+    std::vector<std::string> choices{}; // choice and enum keys: the values allowed
+    std::string absent{};             // what an absent key means, where no value says it
+    VectorSize size = VectorSize::dimension;
+    bool nullable = false; // a value that may be null (absent): an effect that is off
+};
+
+template <class S>
+using KeyTable = std::vector<Key<S>>;
+
+template <class P>
+struct MemberOf;
+template <class S, class T>
+struct MemberOf<T S::*> {
+    using Struct = S;
+    using Type = T;
+};
+
+// The EnumField of member M, an enum whose values are 0, 1, ... in the order
+// of the key's choices.
+template <auto M>
+constexpr EnumField<typename MemberOf<decltype(M)>::Struct> enum_field() {
+    using S = typename MemberOf<decltype(M)>::Struct;
+    using E = typename MemberOf<decltype(M)>::Type;
+    return {[](const S& s) { return static_cast<int>(s.*M); },
+            [](S& s, int i) { s.*M = static_cast<E>(i); }};
+}
+
+// The EnumField of member M, a std::optional of such an enum whose first
+// choice is "auto": nullopt, resolved from the rest of the scene.
+template <auto M>
+constexpr EnumField<typename MemberOf<decltype(M)>::Struct> auto_enum_field() {
+    using S = typename MemberOf<decltype(M)>::Struct;
+    using E = typename MemberOf<decltype(M)>::Type::value_type;
+    return {[](const S& s) { return (s.*M) ? static_cast<int>(*(s.*M)) + 1 : 0; },
+            [](S& s, int i) {
+                s.*M = i == 0 ? std::optional<E>() : std::optional(static_cast<E>(i - 1));
+            }};
+}
+
+} // namespace sph

@@ -1,0 +1,103 @@
+#include "sph/solvers/solver_keys.hpp"
+
+#include "sph/neighbours/neighbour_search.hpp"
+#include "sph/solvers/solver.hpp"
+
+namespace sph {
+
+const KeyTable<SolverSettings>& solver_keys() {
+    using S = SolverSettings;
+    static const KeyTable<S> keys{
+        {.path = "name",
+         .field = &S::name,
+         .doc = "Solver: seed (the report's model), wcsph (Becker & Teschner 2007) or dfsph "
+                "(Bender & Koschier 2017).",
+         .choices = solver_names()},
+        {.path = "kernel",
+         .field = auto_enum_field<&S::kernel>(),
+         .doc = "Smoothing kernel: seed (poly6 values, spiky gradients), cubic_spline or "
+                "wendland_c2; auto: seed for the seed solver, cubic_spline for the others.",
+         .choices = {"auto", "seed", "cubic_spline", "wendland_c2"}},
+        {.path = "dt",
+         .field = &S::dt,
+         .unit = "s",
+         .doc = "Fixed time step; without it the step adapts (solver.cfl, solver.dt_min, "
+                "solver.dt_max).",
+         .bound = Bound::positive,
+         .absent = "adaptive"},
+        {.path = "cfl",
+         .field = &S::cfl,
+         .doc = "Courant number of the adaptive step: dt <= cfl h / (c + v_max) for seed and "
+                "wcsph, dt <= cfl spacing / v_max for dfsph.",
+         .bound = Bound::positive},
+        {.path = "dt_min",
+         .field = &S::dt_min,
+         .unit = "s",
+         .doc = "Smallest adaptive step.",
+         .bound = Bound::positive},
+        {.path = "dt_max",
+         .field = &S::dt_max,
+         .unit = "s",
+         .doc = "Largest adaptive step.",
+         .bound = Bound::positive},
+        {.path = "integrator",
+         .field = enum_field<&S::integrator>(),
+         .doc = "Time integrator of seed and wcsph: symplectic_euler (first order, the seed's) "
+                "or verlet (kick-drift-kick, second order).",
+         .choices = {"symplectic_euler", "verlet"}},
+        {.path = "walls",
+         .field = auto_enum_field<&S::walls>(),
+         .doc = "Domain walls: reflect (the seed's) or particles (Akinci et al. 2012 boundary "
+                "particles); auto: reflect for seed, particles for the others.",
+         .choices = {"auto", "reflect", "particles"}},
+        {.path = "artificial_viscosity",
+         .field = &S::artificial_viscosity,
+         .doc = "Alpha of Monaghan's artificial viscosity (wcsph).",
+         .bound = Bound::non_negative},
+        {.path = "tolerance",
+         .field = &S::tolerance,
+         .unit = "%",
+         .doc = "dfsph: mean density error the density solve stops at.",
+         .bound = Bound::positive},
+        {.path = "divergence_tolerance",
+         .field = &S::divergence_tolerance,
+         .unit = "%",
+         .doc = "dfsph: mean density change per step the divergence solve stops at.",
+         .bound = Bound::positive},
+        {.path = "min_iterations",
+         .field = &S::min_iterations,
+         .doc = "dfsph: fewest iterations of each solve.",
+         .min = 0,
+         .max = 100000},
+        {.path = "max_iterations",
+         .field = &S::max_iterations,
+         .doc = "dfsph: most iterations of each solve.",
+         .min = 1,
+         .max = 100000},
+        {.path = "warm_start",
+         .field = &S::warm_start,
+         .doc = "dfsph: start each pressure solve from the last step's (2-3x fewer iterations; "
+                "less accurate pressure in deep tanks)."},
+        {.path = "neighbour_search",
+         .field = &S::neighbour_search,
+         .doc = "Neighbour search.",
+         .choices = neighbour_search_names()},
+        {.path = "reorder_every",
+         .field = &S::reorder_every,
+         .doc = "Steps between spatial sorts of the particle arrays by grid cell (Morton order), "
+                "which keep neighbours near in memory; 0: never. Changes round-off only.",
+         .min = 0,
+         .max = 1000000},
+        {.path = "precision",
+         .field = auto_enum_field<&S::precision>(),
+         .doc = "Arithmetic of wcsph's density and pressure passes: single (float, a grid cell "
+                "at a time, no neighbour lists; 1.3-1.8x faster in 2D, even in 3D for more "
+                "memory) or double (neighbour lists); auto: single in 2D where it can run "
+                "(wcsph, a smooth kernel, the sorted grid, no XSPH or surface tension), else "
+                "double.",
+         .choices = {"auto", "single", "double"}},
+    };
+    return keys;
+}
+
+} // namespace sph

@@ -1,0 +1,42 @@
+#pragma once
+// The scene's `solver` object: which solver, kernel, integrator, walls and
+// neighbour search, and the settings of the time step and the pressure
+// solve. Defaults shared with the core's settings structs (params.hpp) are
+// taken from them, so each is written once.
+
+#include "sph/params.hpp"
+#include "sph/scene_key.hpp"
+
+#include <optional>
+#include <string>
+
+namespace sph {
+
+struct SolverSettings {
+    std::string name = "seed";                   // seed | wcsph | dfsph
+    std::optional<KernelKind> kernel;            // none: auto, the solver's default
+    std::optional<double> dt;                    // s; fixed step; default adaptive
+    double cfl = TimeStepSettings{}.cfl;         // Courant number of the adaptive step
+    double dt_min = TimeStepSettings{}.dt_min;   // s
+    double dt_max = TimeStepSettings{}.dt_max;   // s
+    Integrator integrator = Integrator::symplectic_euler;
+    std::optional<WallModel> walls;              // none: auto, the solver's default
+    double artificial_viscosity = 0.02;          // alpha (wcsph; see effects)
+    double tolerance = PressureSolveSettings{}.tolerance;                       // % (dfsph)
+    double divergence_tolerance = PressureSolveSettings{}.divergence_tolerance; // % per step
+    int min_iterations = PressureSolveSettings{}.min_iterations;                // dfsph
+    int max_iterations = PressureSolveSettings{}.max_iterations;                // dfsph
+    bool warm_start = PressureSolveSettings{}.warm_start;                       // dfsph
+    // sorted_grid | hash (the seed's) | all_pairs
+    std::string neighbour_search = "sorted_grid";
+    // Steps between spatial sorts of the particle arrays by cell; 0: never.
+    int reorder_every = 20;
+    // The arithmetic of wcsph's density and pressure passes
+    // (sph/single_precision/cell_passes.hpp); none: auto.
+    std::optional<Precision> precision;
+};
+
+// The keys of `solver`, in the order `sphclip keys` lists them.
+const KeyTable<SolverSettings>& solver_keys();
+
+} // namespace sph

@@ -2,7 +2,7 @@
 // and each effect does what its paper says.
 #include "io/input_error.hpp"
 #include "io/scene_setup.hpp"
-#include "sph/effects/emitter.hpp"
+#include "sph/sources/emitter.hpp"
 #include "sph/effects/surface_tension.hpp"
 
 #include <algorithm>

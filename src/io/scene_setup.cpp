@@ -2,7 +2,7 @@
 
 #include "io/input_error.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
-#include "sph/effects/emitter.hpp"
+#include "sph/sources/emitter.hpp"
 #include "sph/effects/gravity.hpp"
 #include "sph/effects/laminar_viscosity.hpp"
 #include "sph/effects/seed_viscosity.hpp"

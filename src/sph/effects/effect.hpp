@@ -3,7 +3,7 @@
 // built once from the scene: an effect the scene does not name is not in the
 // list, allocates nothing and costs nothing per step.
 
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary_particles.hpp"
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"

@@ -1,11 +1,11 @@
 #include "sph/solvers/dfsph.hpp"
 
-#include "sph/boundary.hpp"
+#include "sph/boundaries/box_walls.hpp"
 #include "sph/headroom.hpp"
 #include "sph/integrate.hpp"
 #include "sph/neighbours/neighbour_sum.hpp"
-#include "sph/obstacles.hpp"
-#include "sph/paddles.hpp"
+#include "sph/boundaries/obstacles.hpp"
+#include "sph/boundaries/paddles.hpp"
 #include "sph/pair_direction.hpp"
 #include "sph/solvers/density_with_walls.hpp"
 
@@ -16,7 +16,7 @@
 // Notation. With g_ij = m grad W_ij (fluid pairs) and w_ib = rho0 V_b grad W_ib
 // (wall pairs), the rate of compression is
 //   D rho_i / Dt = sum_j g_ij . (v_i - v_j) + sum_b w_ib . (v_i - v_b)
-// (v_b = 0 but on a paddle, sph/paddles.hpp; Bender & Koschier 2017, eq. 9's
+// (v_b = 0 but on a paddle, sph/boundaries/paddles.hpp; Bender & Koschier 2017, eq. 9's
 // source with Akinci's boundary term, as SPlisHSPlasH's TimeStepDFSPH)
 // and a velocity correction with per-particle stiffness s
 //   dv_i = - sum_j (s_i + s_j) g_ij - sum_b s_i w_ib

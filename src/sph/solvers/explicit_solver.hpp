@@ -7,10 +7,10 @@
 // Verlet's second half-kick uses the accelerations at the new positions, which
 // the next step's first half-kick reuses: one force evaluation per step.
 
-#include "sph/boundary.hpp"
+#include "sph/boundaries/box_walls.hpp"
 #include "sph/integrate.hpp"
-#include "sph/obstacles.hpp"
-#include "sph/paddles.hpp"
+#include "sph/boundaries/obstacles.hpp"
+#include "sph/boundaries/paddles.hpp"
 #include "sph/solvers/solver.hpp"
 
 namespace sph {

@@ -2,10 +2,10 @@
 // The interface every solver implements. A solver's step() reads like its
 // algorithm: a named call per stage, the stages themselves in their own files.
 
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary_particles.hpp"
 #include "sph/effects/effect.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
-#include "sph/paddles.hpp"
+#include "sph/boundaries/paddles.hpp"
 #include "sph/stage_times.hpp"
 #include "sph/time_step.hpp"
 
@@ -38,7 +38,7 @@ struct StepContext {
     BoundaryParticles<D>* moving_boundary = nullptr;
 
     // Moves the paddles' boundary particles to where their motions have them
-    // at time t, with their velocities (sph/paddles.hpp).
+    // at time t, with their velocities (sph/boundaries/paddles.hpp).
     void place_paddles(const Params<D>& params, Real t) {
         if (!moving_boundary)
             return;

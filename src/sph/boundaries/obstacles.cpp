@@ -1,4 +1,4 @@
-#include "sph/obstacles.hpp"
+#include "sph/boundaries/obstacles.hpp"
 
 #include <algorithm>
 #include <cassert>

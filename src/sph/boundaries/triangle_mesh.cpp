@@ -1,4 +1,4 @@
-#include "sph/triangle_mesh.hpp"
+#include "sph/boundaries/triangle_mesh.hpp"
 
 #include <algorithm>
 #include <cassert>

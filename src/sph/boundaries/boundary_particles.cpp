@@ -1,4 +1,4 @@
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary_particles.hpp"
 
 #include "sph/headroom.hpp"
 #include "sph/lattice.hpp"

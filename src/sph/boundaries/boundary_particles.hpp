@@ -7,7 +7,7 @@
 //   rho_i = sum_j m W_ij + sum_b rho0 V_b W_ib       (eq. 6)
 // and pressure pushes a particle away from the wall as it would from fluid.
 // They live apart from the fluid State, with a grid of their own built once.
-// Paddles (sph/paddles.hpp) add particles that move: they come after the
+// Paddles (sph/boundaries/paddles.hpp) add particles that move: they come after the
 // static ones, with velocities and a second grid rebuilt whenever they move,
 // so the static grid, and every sum over static particles, stays as it is.
 
@@ -30,7 +30,7 @@ class BoundaryParticles {
     // Particles at `positions` that each fill the same volume.
     BoundaryParticles(std::vector<Vec<D>> positions, Real h, Real volume);
     // Particles at `positions`, each filling its own volume (volumes[b] for
-    // positions[b]): domain walls and obstacles in one set (sph/obstacles.hpp).
+    // positions[b]): domain walls and obstacles in one set (sph/boundaries/obstacles.hpp).
     BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes, Real h);
 
     // The walls of `domain`: every lattice site (spacing s, aligned with the

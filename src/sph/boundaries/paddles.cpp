@@ -1,6 +1,6 @@
-#include "sph/paddles.hpp"
+#include "sph/boundaries/paddles.hpp"
 
-#include "sph/obstacles.hpp"
+#include "sph/boundaries/obstacles.hpp"
 
 #include <algorithm>
 #include <cmath>

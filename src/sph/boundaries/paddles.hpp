@@ -16,7 +16,7 @@
 // unchanged. A static particle has v_b = 0 and the arithmetic of a static
 // wall is unchanged.
 
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary_particles.hpp"
 #include "sph/state.hpp"
 #include "sph/vec.hpp"
 

@@ -10,7 +10,7 @@
 // BoundaryParticles set the solvers already use for density and pressure.
 
 #include "sph/state.hpp"
-#include "sph/triangle_mesh.hpp"
+#include "sph/boundaries/triangle_mesh.hpp"
 #include "sph/vec.hpp"
 
 #include <cstddef>

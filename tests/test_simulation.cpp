@@ -357,12 +357,12 @@ TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][
         CHECK(sim.particle_steps() == 3 * sim.state().size());
         return stage_names(sim.stage_times());
     };
-    // The seed: reflecting walls, its pair force (pressure, then its viscous
-    // term as the viscosity effect), gravity; the particles sorted by cell
-    // on the first step (solver.reorder_every).
+    // The seed: reflecting walls, its pair force (pressure, with its viscous
+    // term, the viscosity effect, in the same pass), gravity; the particles
+    // sorted by cell on the first step (solver.reorder_every).
     CHECK(stages_of({}) == Names{"boundary", "density", "gravity", "integration",
                                  "neighbour search", "pressure", "reorder", "time step",
-                                 "viscosity", "watchdog"});
+                                 "watchdog"});
     // No effects and no viscosity: no gravity or viscosity stage. A fixed
     // step: no time-step rule. Never sorted: no reorder stage.
     CHECK(stages_of({{"effects", "{}"},
@@ -370,11 +370,11 @@ TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][
                      {"material.viscosity", "0"},
                      {"solver.reorder_every", "0"}}) ==
           Names{"boundary", "density", "integration", "neighbour search", "pressure", "watchdog"});
-    // wcsph: wall particles, Tait pressure, Morris viscosity and the
-    // artificial one it has by default.
+    // wcsph: wall particles, Tait pressure, with Morris viscosity and the
+    // artificial one it has by default in the same pass.
     CHECK(stages_of({{"solver.name", "wcsph"}}) ==
-          Names{"artificial_viscosity", "boundary", "density", "gravity", "integration",
-                "neighbour search", "pressure", "reorder", "time step", "viscosity", "watchdog"});
+          Names{"boundary", "density", "gravity", "integration", "neighbour search", "pressure",
+                "reorder", "time step", "watchdog"});
     // Every viscosity effect named, with an inviscid material.
     CHECK(stages_of({{"solver.name", "wcsph"},
                      {"material.viscosity", "0"},

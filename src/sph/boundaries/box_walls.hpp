@@ -1,8 +1,8 @@
 #pragma once
-// Walls of the domain box.
+// Walls of the domain box (solver.walls): reflecting, or particles
+// (BoundaryParticles::box_walls) with the reflection kept as the last guard.
 
-#include "sph/params.hpp"
-#include "sph/state.hpp"
+#include "sph/boundaries/boundary.hpp"
 
 namespace sph {
 
@@ -10,9 +10,8 @@ namespace sph {
 // wall it crossed and its velocity reflected, v - 2 (v.n) n. Only a particle
 // moving outwards is reflected, so a reflection never sends it back out.
 template <int D>
-void reflect_at_box(const Params<D>& params, State<D>& state) {
+void reflect_at_box(const Box<D>& box, State<D>& state) {
     const std::size_t n = state.size();
-    const Box<D>& box = params.domain;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
         Vec<D>& x = state.position[i];
@@ -30,5 +29,21 @@ void reflect_at_box(const Params<D>& params, State<D>& state) {
         }
     }
 }
+
+// The domain's walls in the boundary list: every scene has them.
+template <int D>
+class BoxWalls final : public Boundary<D> {
+  public:
+    explicit BoxWalls(const Box<D>& domain) : domain_(domain) {}
+    std::string_view name() const override { return "walls"; }
+    // Reflections are not counted: they are the box's ordinary collisions.
+    std::size_t keep_out(Real, State<D>& state) const override {
+        reflect_at_box(domain_, state);
+        return 0;
+    }
+
+  private:
+    Box<D> domain_;
+};
 
 } // namespace sph

@@ -9,13 +9,15 @@
 // it. The samples join the domain walls' particles in the one
 // BoundaryParticles set the solvers already use for density and pressure.
 
-#include "sph/state.hpp"
+#include "sph/boundaries/boundary.hpp"
 #include "sph/boundaries/triangle_mesh.hpp"
+#include "sph/state.hpp"
 #include "sph/vec.hpp"
 
 #include <cstddef>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace sph {
@@ -70,5 +72,19 @@ bool blocked_by_obstacle(std::span<const Obstacle<D>> obstacles, const Vec<D>& x
 // reaches the rest density close to them. Returns how many were put back.
 template <int D>
 std::size_t push_out_of_obstacles(std::span<const Obstacle<D>> obstacles, State<D>& state);
+
+// The scene's obstacles in the boundary list (present when it has any).
+template <int D>
+class ObstacleSet final : public Boundary<D> {
+  public:
+    explicit ObstacleSet(std::vector<Obstacle<D>> obstacles) : obstacles_(std::move(obstacles)) {}
+    std::string_view name() const override { return "obstacles"; }
+    std::size_t keep_out(Real, State<D>& state) const override {
+        return push_out_of_obstacles<D>(obstacles_, state);
+    }
+
+  private:
+    std::vector<Obstacle<D>> obstacles_;
+};
 
 } // namespace sph

@@ -16,14 +16,16 @@
 // unchanged. A static particle has v_b = 0 and the arithmetic of a static
 // wall is unchanged.
 
-#include "sph/boundaries/boundary_particles.hpp"
+#include "sph/boundaries/boundary.hpp"
 #include "sph/state.hpp"
 #include "sph/vec.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace sph {
@@ -80,5 +82,31 @@ void move_paddles(std::span<const Paddle<D>> paddles, Real t, BoundaryParticles<
 // many were put back.
 template <int D>
 std::size_t push_out_of_paddles(std::span<const Paddle<D>> paddles, Real t, State<D>& state);
+
+// The scene's paddles in the boundary list (present when it has any): their
+// particles are the boundary set's moving ones.
+template <int D>
+class PaddleSet final : public Boundary<D> {
+  public:
+    explicit PaddleSet(std::vector<Paddle<D>> paddles) : paddles_(std::move(paddles)) {}
+    std::string_view name() const override { return "paddles"; }
+    std::size_t keep_out(Real t, State<D>& state) const override {
+        return push_out_of_paddles<D>(paddles_, t, state);
+    }
+    bool moves() const override { return true; }
+    void place(Real t, BoundaryParticles<D>& particles) const override {
+        move_paddles<D>(paddles_, t, particles);
+    }
+    // A paddle moves the fluid beside it as fast as it goes itself.
+    Real speed() const override {
+        Real fastest = 0;
+        for (const Paddle<D>& paddle : paddles_)
+            fastest = std::max(fastest, paddle.peak_speed());
+        return fastest;
+    }
+
+  private:
+    std::vector<Paddle<D>> paddles_;
+};
 
 } // namespace sph

@@ -41,14 +41,8 @@ class Effect {
     // none), known before any step: the time step's force condition needs
     // it on the first step, before any acceleration has been computed.
     virtual Real body_acceleration() const { return 0; }
-    // Changes the particle set before a step that starts at `time` (an
-    // emitter adds particles); most effects do nothing here.
-    virtual void before_step(const Params<D>&, Real /*time*/, State<D>&) {}
-    // The speed it gives the particles it makes (0 if none), for the time
-    // step's first estimate.
-    virtual Real speed() const { return 0; }
-    // Bytes of the arrays it keeps (its own per-particle arrays, its
-    // sites); an effect the scene does not name is not built and holds none.
+    // Bytes of the arrays it keeps (its own per-particle arrays); an
+    // effect the scene does not name is not built and holds none.
     virtual std::size_t bytes() const { return 0; }
     // The particle arrays were reordered between steps (State::permute with
     // `order`): per-particle arrays kept from one step to the next must

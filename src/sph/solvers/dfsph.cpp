@@ -1,11 +1,8 @@
 #include "sph/solvers/dfsph.hpp"
 
-#include "sph/boundaries/box_walls.hpp"
 #include "sph/headroom.hpp"
 #include "sph/integrate.hpp"
 #include "sph/neighbours/neighbour_sum.hpp"
-#include "sph/boundaries/obstacles.hpp"
-#include "sph/boundaries/paddles.hpp"
 #include "sph/pair_direction.hpp"
 #include "sph/solvers/density_with_walls.hpp"
 
@@ -278,17 +275,13 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     }
     previous_dt_ = dt;
     solve_timed.reset();
-    // 5. Move; the reflecting box and the obstacles' surfaces stay behind the
-    // boundary particles as a last guard.
+    // 5. Move; the boundaries keep the particles out as a last guard, behind
+    // the boundary particles.
     {
         auto timed = context.time("integration");
         drift(dt, state);
     }
-    auto timed = context.time("boundary");
-    reflect_at_box(params, state);
-    report.obstacle_pushes = push_out_of_obstacles<D>(params.obstacles, state);
-    report.obstacle_pushes +=
-        push_out_of_paddles<D>(params.paddles, context.start_time + dt, state);
+    report.obstacle_pushes = context.last_guard(context.start_time + dt, state);
     return report;
 }
 

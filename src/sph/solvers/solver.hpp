@@ -2,10 +2,9 @@
 // The interface every solver implements. A solver's step() reads like its
 // algorithm: a named call per stage, the stages themselves in their own files.
 
-#include "sph/boundaries/boundary_particles.hpp"
+#include "sph/boundaries/boundary.hpp"
 #include "sph/effects/effect.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
-#include "sph/boundaries/paddles.hpp"
 #include "sph/stage_times.hpp"
 #include "sph/time_step.hpp"
 
@@ -20,8 +19,8 @@
 namespace sph {
 
 // What a step needs besides parameters and state: the neighbour search and the
-// lists it fills (reused every step), the wall particles when the walls are
-// made of particles, and the scene's effects.
+// lists it fills (reused every step), the boundary particles when there are
+// any, the scene's effects and its boundaries.
 template <int D>
 struct StepContext {
     NeighbourSearch<D>& search;
@@ -29,6 +28,7 @@ struct StepContext {
     const BoundaryParticles<D>* boundary; // null: walls reflect (the seed's)
     NeighbourList& boundary_neighbours;   // fluid -> boundary particles
     const EffectList<D>& effects;
+    const BoundaryList<D>& boundaries; // walls, obstacles, paddles (boundary_set.hpp)
     StageTimes* stages = nullptr; // where stage times go; null: not timed
     Real dt = 0;                  // s, the step being taken (XSPH reads it)
     Real start_time = 0;          // s, when the step starts (paddles move with it)
@@ -37,13 +37,23 @@ struct StepContext {
     // nothing in it moves.
     BoundaryParticles<D>* moving_boundary = nullptr;
 
-    // Moves the paddles' boundary particles to where their motions have them
-    // at time t, with their velocities (sph/boundaries/paddles.hpp).
-    void place_paddles(const Params<D>& params, Real t) {
+    // Moves the boundary particles that move (the paddles') to where their
+    // motions have them at time t, with their velocities.
+    void place_boundaries(Real t) {
         if (!moving_boundary)
             return;
-        auto timed = time("paddles");
-        move_paddles<D>(params.paddles, t, *moving_boundary);
+        for (const auto& b : boundaries)
+            if (b->moves()) {
+                auto timed = time(b->name());
+                b->place(t, *moving_boundary);
+            }
+    }
+
+    // The last guard, at the end of a step that ends at time t: what the
+    // boundaries put back (boundary.hpp); the pushes stats.csv counts.
+    std::uint64_t last_guard(Real t, State<D>& state) {
+        auto timed = time("boundary");
+        return sph::last_guard<D>(boundaries, t, state);
     }
 
     // Times the stage that lives as long as the returned scope.

@@ -17,8 +17,9 @@
 // the state grows with them (State::resize), and the solvers size their own arrays from the state
 // each step.
 
-#include "sph/effects/effect.hpp"
+#include "sph/sources/source.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -27,7 +28,7 @@
 namespace sph {
 
 template <int D>
-class Emitter final : public Effect<D> {
+class Emitter final : public Source<D> {
   public:
     // `sites`: the box's lattice points; `thickness`: its extent along v (m).
     Emitter(const Box<D>& box, Real spacing, std::vector<Vec<D>> sites, const Vec<D>& velocity,
@@ -40,10 +41,9 @@ class Emitter final : public Effect<D> {
     }
 
     std::string_view name() const override { return "emitters"; }
-    void apply(const Params<D>&, const EffectInputs<D>&, State<D>&) override {}
     std::size_t bytes() const override { return sites_.capacity() * sizeof(Vec<D>); }
 
-    void before_step(const Params<D>&, Real time, State<D>& state) override {
+    void emit(const Params<D>&, Real time, State<D>& state) override {
         if (time >= start_ && time < end_ + interval_)
             drive_inlet_zone(state);
         // Batches due by `time` (a little slack for rounding of t).

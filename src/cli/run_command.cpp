@@ -254,12 +254,12 @@ int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& optio
             total.encode_wait_s += times->finish_wait_seconds;
         }
         StageTimes after, overlapped;
-        after.add("frame statistics", frame_fields_s);
-        after.add("render", total.render_s);
-        after.add("readback", total.readback_s);
-        after.add("encode wait", total.encode_wait_s);
-        after.add("output", output);
-        overlapped.add("encode", total.encode_s);
+        after.add(Stage::frame_statistics, frame_fields_s);
+        after.add(Stage::render, total.render_s);
+        after.add(Stage::readback, total.readback_s);
+        after.add(Stage::encode_wait, total.encode_wait_s);
+        after.add(Stage::output, output);
+        overlapped.add(Stage::encode, total.encode_s);
         stage_report =
             stage_rows(sim.stage_times(), after, wall(), sim.particle_steps(), overlapped);
         record.document["stages"] = stages_json(stage_report);

@@ -62,7 +62,7 @@ template <int D>
 Real Simulation<D>::next_dt() const {
     if (params_.time_step.fixed)
         return params_.time_step.dt;
-    StageTimes::Scope timed(&stages_, "time step");
+    StageTimes::Scope timed(&stages_, Stage::time_step);
     ExtremeRates rates = measure_rates(state_);
     // What no particle shows yet: gravity before the first step, the speed
     // new particles enter with, the speed a paddle gives the fluid beside it.
@@ -92,7 +92,7 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
         counters_.pressure_iterations += report.pressure_iterations;
         counters_.divergence_iterations += report.divergence_iterations;
         counters_.obstacle_pushes += report.obstacle_pushes;
-        StageTimes::Scope timed(&stages_, "watchdog");
+        StageTimes::Scope timed(&stages_, Stage::watchdog);
         if (auto problem = inspect_step(params_, state_, dt))
             return problem;
     }
@@ -108,7 +108,7 @@ void Simulation<D>::reorder_particles() {
     steps_since_reorder_ = (steps_since_reorder_ + 1) % params_.reorder_every;
     if (!due)
         return;
-    StageTimes::Scope timed(&stages_, "reorder");
+    StageTimes::Scope timed(&stages_, Stage::reorder);
     // From the positions (and memory order) alone, never from the last
     // find's lists, so that frames and outputs cannot change the order.
     std::span<const std::uint32_t> order = search_->cell_order(state_.position, params_.h);
@@ -126,7 +126,7 @@ void Simulation<D>::reorder_particles() {
 template <int D>
 void Simulation<D>::emit_particles() {
     for (const auto& source : sources_) {
-        StageTimes::Scope timed(&stages_, source->name());
+        StageTimes::Scope timed(&stages_, StageName::of(*source));
         source->emit(params_, time_, state_);
     }
 }
@@ -140,7 +140,7 @@ void Simulation<D>::step_by(Real dt) {
     emit_particles();
     // Copy assignment reuses saved_'s memory: no allocation once sizes settle.
     {
-        StageTimes::Scope timed(&stages_, "watchdog");
+        StageTimes::Scope timed(&stages_, Stage::watchdog);
         saved_ = state_;
     }
     const std::uint64_t steps_before = steps_;

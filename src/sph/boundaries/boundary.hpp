@@ -13,6 +13,7 @@
 // (boundary_set.hpp): a kind the scene does not have is not in the list.
 
 #include "sph/boundaries/boundary_particles.hpp"
+#include "sph/stage_times.hpp"
 #include "sph/state.hpp"
 
 #include <cstddef>
@@ -48,13 +49,16 @@ using BoundaryList = std::vector<std::unique_ptr<Boundary<D>>>;
 
 // The last guard every solver ends its step with, shared by all kinds: each
 // boundary in the list's order (the box's walls, the obstacles, the paddles)
-// puts back the particles found inside it at time t. Returns the pushes
-// stats.csv counts.
+// puts back the particles found inside it at time t, timed under its own
+// name (into `stages` unless null). Returns the pushes stats.csv counts.
 template <int D>
-std::uint64_t last_guard(const BoundaryList<D>& boundaries, Real t, State<D>& state) {
+std::uint64_t last_guard(const BoundaryList<D>& boundaries, Real t, State<D>& state,
+                         StageTimes* stages = nullptr) {
     std::uint64_t pushed = 0;
-    for (const auto& boundary : boundaries)
+    for (const auto& boundary : boundaries) {
+        StageTimes::Scope timed(stages, StageName::of(*boundary));
         pushed += boundary->keep_out(t, state);
+    }
     return pushed;
 }
 

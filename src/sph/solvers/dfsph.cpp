@@ -38,7 +38,7 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
     const std::size_t n = state.size();
     find_neighbours_and_density(params, kernel, context, state);
 
-    auto timed = context.time("pressure solve");
+    auto timed = context.time(Stage::pressure_solve);
     factor_.resize(n);
     stiffness_.resize(n);
     stiffness_sum_.resize(n);
@@ -250,7 +250,7 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
         prepare(params, kernel, context, state);
         // 2. Divergence-free velocities (the previous step's end, Algorithm 1 line 12).
         {
-            auto timed = context.time("divergence solve");
+            auto timed = context.time(Stage::divergence_solve);
             report.divergence_iterations = solve(params, dt, Target::divergence, context, state);
         }
     });
@@ -258,11 +258,11 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
     context.apply_effects(params, state);
     {
-        auto timed = context.time("integration");
+        auto timed = context.time(Stage::integration);
         kick(dt, state);
     }
     // 4. Constant density: v so that rho* = rho0; p_i = rho_i^2 s_i / dt.
-    auto solve_timed = std::make_optional<StageTimes::Scope>(context.stages, "pressure solve");
+    auto solve_timed = std::make_optional<StageTimes::Scope>(context.stages, Stage::pressure_solve);
     report.pressure_iterations = solve(params, dt, Target::density, context, state);
     // The pressure itself moves nothing (the solves work with stiffnesses):
     // it is an output, computed only when one reads it.
@@ -278,7 +278,7 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     // 5. Move; the boundaries keep the particles out as a last guard, behind
     // the boundary particles.
     {
-        auto timed = context.time("integration");
+        auto timed = context.time(Stage::integration);
         drift(dt, state);
     }
     report.obstacle_pushes = context.last_guard(context.start_time + dt, state);

@@ -24,7 +24,7 @@ class ExplicitSolver : public Solver<D> {
             if (!accelerations_current_ || state.size() != accelerations_for_)
                 compute_accelerations(params, state, context);
             {
-                auto timed = context.time("integration");
+                auto timed = context.time(Stage::integration);
                 kick(dt / 2, state);
                 drift(dt, state);
             }
@@ -33,14 +33,14 @@ class ExplicitSolver : public Solver<D> {
             // The forces at the new positions see the paddles where they are then.
             context.place_boundaries(context.start_time + dt);
             compute_accelerations(params, state, context);
-            auto timed = context.time("integration");
+            auto timed = context.time(Stage::integration);
             kick(dt / 2, state);
             accelerations_current_ = true;
             accelerations_for_ = state.size();
         } else {
             compute_accelerations(params, state, context);
             {
-                auto timed = context.time("integration");
+                auto timed = context.time(Stage::integration);
                 integrate_symplectic_euler(dt, state);
             }
             // The last guard: the boundaries keep the particles out.

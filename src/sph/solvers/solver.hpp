@@ -44,41 +44,46 @@ struct StepContext {
             return;
         for (const auto& b : boundaries)
             if (b->moves()) {
-                auto timed = time(b->name());
+                auto timed = time(StageName::of(*b));
                 b->place(t, *moving_boundary);
             }
     }
 
     // The last guard, at the end of a step that ends at time t: what the
-    // boundaries put back (boundary.hpp); the pushes stats.csv counts.
+    // boundaries put back (boundary.hpp), each timed under its own name; the
+    // pushes stats.csv counts.
     std::uint64_t last_guard(Real t, State<D>& state) {
-        auto timed = time("boundary");
-        return sph::last_guard<D>(boundaries, t, state);
+        return sph::last_guard<D>(boundaries, t, state, stages);
     }
 
     // Times the stage that lives as long as the returned scope.
-    StageTimes::Scope time(std::string_view stage) { return {stages, stage}; }
+    StageTimes::Scope time(StageName stage) { return {stages, stage}; }
 
     // Fills both lists for the current positions.
     void find_neighbours(std::span<const Vec<D>> positions, Real h) {
         {
-            auto timed = time("neighbour search");
+            auto timed = time(Stage::neighbour_search);
             search.find(positions, h, neighbours);
         }
         if (boundary) {
-            auto timed = time("boundary");
+            auto timed = time(Stage::boundary_neighbours);
             boundary->find_neighbours(positions, boundary_neighbours);
         }
     }
 
     // Adds every effect's acceleration, each timed under its own name, but
-    // those in `merged`, which the solver added in a pass of its own.
+    // those in `merged`, which the solver added in a pass of its own, the
+    // stage `merged_into`: the stage table lists them as done there.
     void apply_effects(const Params<D>& params, State<D>& state,
-                       std::span<const Effect<D>* const> merged = {}) {
+                       std::span<const Effect<D>* const> merged = {},
+                       Stage merged_into = Stage::pressure) {
         for (const auto& effect : effects) {
-            if (std::find(merged.begin(), merged.end(), effect.get()) != merged.end())
+            if (std::find(merged.begin(), merged.end(), effect.get()) != merged.end()) {
+                if (stages)
+                    stages->add_within(StageName::of(*effect), merged_into);
                 continue;
-            auto timed = time(effect->name());
+            }
+            auto timed = time(StageName::of(*effect));
             effect->apply(params, {neighbours, boundary, boundary_neighbours, dt}, state);
         }
     }

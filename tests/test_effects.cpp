@@ -2,7 +2,7 @@
 // and each effect does what its paper says.
 #include "io/input_error.hpp"
 #include "io/scene_setup.hpp"
-#include "sph/effects/emitter.hpp"
+#include "sph/sources/emitter.hpp"
 #include "sph/effects/surface_tension.hpp"
 
 #include <algorithm>
@@ -62,7 +62,7 @@ bool inside_domain(const Params<2>& p, const Vec<2>& x) {
 }
 
 const Emitter<2>& the_emitter(const Simulation<2>& sim) {
-    for (const auto& e : sim.effects())
+    for (const auto& e : sim.sources())
         if (e->name() == "emitters")
             return dynamic_cast<const Emitter<2>&>(*e);
     throw std::logic_error("no emitter");
@@ -265,7 +265,7 @@ TEST_CASE("a disc emitter emits only within its radius of the axis", "[effects]"
     };
     auto sim = make_simulation<3>(scene(R"(, "radius": 0.015)"));
     const auto& emitter = [&]() -> const Emitter<3>& {
-        for (const auto& e : sim.effects())
+        for (const auto& e : sim.sources())
             if (e->name() == "emitters")
                 return dynamic_cast<const Emitter<3>&>(*e);
         throw std::logic_error("no emitter");

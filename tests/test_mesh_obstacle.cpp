@@ -1,5 +1,5 @@
 // Mesh obstacles (src/sph/triangle_mesh.*, src/io/obj_mesh.*, the mesh case
-// of src/sph/obstacles.cpp and of the scene's effects.obstacles): a cube mesh
+// of src/sph/boundaries/obstacles.cpp and of the scene's effects.obstacles): a cube mesh
 // against the analytic box, an icosphere against the analytic sphere, the
 // OBJ file's checks and path rule, a dam break that never puts fluid inside,
 // and the renderer.
@@ -9,8 +9,8 @@
 #include "io/scene_setup.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
-#include "sph/obstacles.hpp"
-#include "sph/triangle_mesh.hpp"
+#include "sph/boundaries/obstacles.hpp"
+#include "sph/boundaries/triangle_mesh.hpp"
 #include "support/temp_folder.hpp"
 
 #include <algorithm>

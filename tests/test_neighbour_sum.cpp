@@ -1,7 +1,7 @@
 // The vectorised row sums (sph/neighbours/neighbour_sum.hpp) and the padding
 // every neighbour list ends in, which lets their loops read whole vectors
 // past a row's end.
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary_particles.hpp"
 #include "sph/neighbours/all_pairs.hpp"
 #include "sph/neighbours/neighbour_sum.hpp"
 #include "sph/neighbours/sorted_grid.hpp"

@@ -1,4 +1,4 @@
-// Static obstacles (src/sph/obstacles.cpp and the scene's effects.obstacles):
+// Static obstacles (src/sph/boundaries/obstacles.cpp and the scene's effects.obstacles):
 // the keys and their checks, the sampling of the solid, the rest density
 // beside an obstacle, and dam breaks against obstacles that never let fluid
 // inside.
@@ -9,7 +9,7 @@
 #include "render/gl_context.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
-#include "sph/obstacles.hpp"
+#include "sph/boundaries/obstacles.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

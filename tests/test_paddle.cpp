@@ -1,4 +1,4 @@
-// Paddles (src/sph/paddles.cpp and the scene's effects.paddles): boxes that
+// Paddles (src/sph/boundaries/paddles.cpp and the scene's effects.paddles): boxes that
 // move with a prescribed motion. Their boundary particles follow the motion,
 // fluid in front of a piston is pushed along at its speed and never ends up
 // inside it, the momentum it gets has the sign of the motion, a paddle the
@@ -8,7 +8,7 @@
 #include "io/input_error.hpp"
 #include "io/scene.hpp"
 #include "io/scene_setup.hpp"
-#include "sph/paddles.hpp"
+#include "sph/boundaries/paddles.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
 

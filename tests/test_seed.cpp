@@ -1,5 +1,6 @@
 // The seed solver against the seed's formulas (../shared/seed/MODEL.md)
 // evaluated by hand for a pair and a triple of particles, in 2D and 3D.
+#include "sph/boundaries/boundary_set.hpp"
 #include "sph/density.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/kernels.hpp"
@@ -187,7 +188,8 @@ TEST_CASE("the seed solver conserves momentum without walls and gravity", "[seed
     NeighbourList list;
     EffectList<2> none;
     NeighbourList no_walls;
-    StepContext<2> context{search, list, nullptr, no_walls, none};
+    const BoundaryList<2> box = make_boundaries(p);
+    StepContext<2> context{search, list, nullptr, no_walls, none, box};
     SeedSolver<2> solver;
     for (int step = 0; step < 200; ++step)
         solver.step(p, 1e-3, s, context);

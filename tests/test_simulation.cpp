@@ -338,10 +338,13 @@ TEST_CASE("the state hash sees every bit and not the memory order", "[simulation
 
 namespace {
 
-std::vector<std::string> stage_names(const StageTimes& times) {
+// The stage table's rows by name, sorted; a part computed inside another
+// stage as "name in stage".
+std::vector<std::string> rows_of(const StageTimes& times) {
     std::vector<std::string> names;
     for (const auto& e : times.entries())
-        names.emplace_back(e.name);
+        names.push_back(e.within ? std::string(e.name) + " in " + std::string(stage_name(*e.within))
+                                 : std::string(e.name));
     std::sort(names.begin(), names.end());
     return names;
 }
@@ -355,38 +358,88 @@ TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][
         for (int k = 0; k < 3; ++k)
             sim.step();
         CHECK(sim.particle_steps() == 3 * sim.state().size());
-        return stage_names(sim.stage_times());
+        return rows_of(sim.stage_times());
     };
     // The seed: reflecting walls, its pair force (pressure, then its viscous
-    // term as the viscosity effect), gravity; the particles sorted by cell
-    // on the first step (solver.reorder_every).
-    CHECK(stages_of({}) == Names{"boundary", "density", "gravity", "integration",
-                                 "neighbour search", "pressure", "reorder", "time step",
-                                 "viscosity", "watchdog"});
+    // term, the viscosity effect, in the same pass), gravity; the particles
+    // sorted by cell on the first step (solver.reorder_every).
+    CHECK(stages_of({}) == Names{"density", "gravity", "integration", "neighbour search",
+                                 "pressure", "reorder", "time step", "viscosity in pressure",
+                                 "walls", "watchdog"});
     // No effects and no viscosity: no gravity or viscosity stage. A fixed
     // step: no time-step rule. Never sorted: no reorder stage.
     CHECK(stages_of({{"effects", "{}"},
                      {"solver.dt", "1e-4"},
                      {"material.viscosity", "0"},
                      {"solver.reorder_every", "0"}}) ==
-          Names{"boundary", "density", "integration", "neighbour search", "pressure", "watchdog"});
-    // wcsph: wall particles, Tait pressure, Morris viscosity and the
-    // artificial one it has by default.
+          Names{"density", "integration", "neighbour search", "pressure", "walls", "watchdog"});
+    // wcsph: wall particles (found with the fluid's on grid cells in single
+    // precision), Tait pressure, with Morris viscosity and the artificial one
+    // it has by default in the same pass.
     CHECK(stages_of({{"solver.name", "wcsph"}}) ==
-          Names{"artificial_viscosity", "boundary", "density", "gravity", "integration",
-                "neighbour search", "pressure", "reorder", "time step", "viscosity", "watchdog"});
+          Names{"artificial_viscosity in pressure", "density", "gravity", "integration",
+                "neighbour search", "pressure", "reorder", "time step", "viscosity in pressure",
+                "walls", "watchdog"});
     // Every viscosity effect named, with an inviscid material.
     CHECK(stages_of({{"solver.name", "wcsph"},
                      {"material.viscosity", "0"},
                      {"effects", R"({"viscosity": {"mu": 0.5, "model": "seed"},
                                      "artificial_viscosity": {"alpha": 0},
                                      "xsph": {"epsilon": 0.3}})"}}) ==
-          Names{"boundary", "density", "integration", "neighbour search", "pressure", "reorder",
-                "time step", "viscosity", "watchdog", "xsph"});
+          Names{"boundary neighbours", "density", "integration", "neighbour search", "pressure",
+                "reorder", "time step", "viscosity", "walls", "watchdog", "xsph"});
     // dfsph without viscosity: its two solves, no viscosity stage.
     CHECK(stages_of({{"solver.name", "dfsph"}, {"material.viscosity", "0"}}) ==
-          Names{"boundary", "density", "divergence solve", "gravity", "integration",
-                "neighbour search", "pressure solve", "reorder", "time step", "watchdog"});
+          Names{"boundary neighbours", "density", "divergence solve", "gravity", "integration",
+                "neighbour search", "pressure solve", "reorder", "time step", "walls",
+                "watchdog"});
+}
+
+TEST_CASE("the stage table names each obstacle, paddle and emitter the scene declares, and "
+          "nothing else",
+          "[simulation][stages]") {
+    using Names = std::vector<std::string>;
+    // Algorithm stages come from the one table; every other row is a part
+    // the scene declares, under its own key.
+    const auto parts_of = [](const StageTimes& times) {
+        Names parts;
+        for (const auto& e : times.entries())
+            if (std::find(stage_names.begin(), stage_names.end(), e.name) == stage_names.end())
+                parts.emplace_back(e.name);
+        std::sort(parts.begin(), parts.end());
+        return parts;
+    };
+    const std::string obstacle_and_paddle =
+        R"({"gravity": [0, -9.81],
+            "obstacles": [{"box": {"min": [0.12, 0], "max": [0.14, 0.02]}}],
+            "paddles": [{"min": [0.2, 0], "max": [0.21, 0.1], "motion": "sine",
+                         "amplitude": [0.01, 0], "period": 0.5}]})";
+    // (The seed's reflecting walls take no obstacles.)
+    for (const char* solver : {"wcsph", "dfsph"}) {
+        INFO(solver);
+        auto sim = make_simulation<2>(small_dam_break({{"solver.name", solver},
+                                                       {"material.viscosity", "0"},
+                                                       {"effects", obstacle_and_paddle}}));
+        for (int k = 0; k < 3; ++k)
+            sim.step();
+        Names declared{"gravity", "obstacles", "paddles", "walls"};
+        if (std::string(solver) == "wcsph") // its default artificial viscosity, in its pressure pass
+            declared.insert(declared.begin(), "artificial_viscosity");
+        CHECK(parts_of(sim.stage_times()) == declared);
+        for (const auto& e : sim.stage_times().entries())
+            if (e.name == "obstacles" || e.name == "paddles") {
+                CHECK(!e.within);
+                CHECK(e.seconds > 0);
+            }
+    }
+    // An emitter is a part too; without obstacles or paddles they have no row.
+    auto sim = make_simulation<2>(small_dam_break(
+        {{"material.viscosity", "0"},
+         {"effects", R"({"emitters": [{"min": [0.1, 0.1], "max": [0.112, 0.14],
+                                       "velocity": [1, 0], "start": 0, "end": 1}]})"}}));
+    for (int k = 0; k < 3; ++k)
+        sim.step();
+    CHECK(parts_of(sim.stage_times()) == Names{"emitters", "walls"});
 }
 
 TEST_CASE("a field no output reads is not computed, and the run is the same", "[simulation][fields]") {

@@ -3,6 +3,7 @@
 // solves.
 #include "io/scene.hpp"
 #include "io/scene_setup.hpp"
+#include "sph/boundaries/boundary_set.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/neighbours/all_pairs.hpp"
 #include "sph/solvers/dfsph.hpp"
@@ -190,7 +191,8 @@ Real spring_error(Integrator integrator, int steps) {
     AllPairs<2> search;
     NeighbourList list, walls;
     EffectList<2> none;
-    StepContext<2> context{search, list, nullptr, walls, none};
+    const BoundaryList<2> box = make_boundaries(p);
+    StepContext<2> context{search, list, nullptr, walls, none, box};
     Spring spring;
     const Real dt = 1.0 / steps;
     for (int k = 0; k < steps; ++k)

@@ -345,12 +345,12 @@ class ClipRun {
             total.encode_wait_s += times->finish_wait_seconds;
         }
         StageTimes after, overlapped;
-        after.add("frame statistics", frame_fields_s_);
-        after.add("render", total.render_s);
-        after.add("readback", total.readback_s);
-        after.add("encode wait", total.encode_wait_s);
-        after.add("output", output);
-        overlapped.add("encode", total.encode_s);
+        after.add(Stage::frame_statistics, frame_fields_s_);
+        after.add(Stage::render, total.render_s);
+        after.add(Stage::readback, total.readback_s);
+        after.add(Stage::encode_wait, total.encode_wait_s);
+        after.add(Stage::output, output);
+        overlapped.add(Stage::encode, total.encode_s);
         std::vector<StageRow> stages =
             stage_rows(sim_.stage_times(), after, wall_seconds, sim_.particle_steps(), overlapped);
         record_.document["stages"] = stages_json(stages);

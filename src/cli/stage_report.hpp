@@ -20,11 +20,15 @@ struct StageRow {
     // Ran on a worker thread alongside the other stages (the MP4 encoder):
     // its share is not part of theirs, and all shares may add up to over 1.
     bool overlapped = false;
+    // A part of the scene computed inside this stage (a viscosity in wcsph's
+    // pressure pass): its time is that stage's, its own seconds are 0.
+    std::string within;
 };
 
 // The simulation's stages, then `after` (render, readback, ...: stages
 // outside the step), then `overlapped` (worker threads' busy time), leaving
-// out stages that took no time at all.
+// out stages that took no time at all (but the parts computed within
+// another stage).
 std::vector<StageRow> stage_rows(const StageTimes& simulation, const StageTimes& after,
                                  double wall_seconds, std::uint64_t particle_steps,
                                  const StageTimes& overlapped = {});

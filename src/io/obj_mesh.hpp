@@ -5,7 +5,7 @@
 // groups and materials are ignored, and `mtllib` is not followed (the text
 // is parsed from memory), so reading a mesh opens no other file.
 
-#include "sph/triangle_mesh.hpp"
+#include "sph/boundaries/triangle_mesh.hpp"
 
 #include <filesystem>
 #include <memory>

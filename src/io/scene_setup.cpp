@@ -3,7 +3,7 @@
 #include "io/input_error.hpp"
 #include "io/keys/effect_registry.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
-#include "sph/effects/emitter.hpp"
+#include "sph/sources/emitter.hpp"
 #include "sph/effects/gravity.hpp"
 #include "sph/effects/laminar_viscosity.hpp"
 #include "sph/effects/seed_viscosity.hpp"
@@ -124,6 +124,12 @@ EffectList<D> make_effects(const Scene& scene) {
     EffectList<D> effects;
     for_each_effect(scene.effects,
                     [&](const auto& settings) { effects.push_back(make_effect<D>(settings)); });
+    return effects;
+}
+
+template <int D>
+SourceList<D> make_sources(const Scene& scene) {
+    SourceList<D> sources;
     for (std::size_t index = 0; index < scene.effects.emitters.size(); ++index) {
         const SceneEmitter& e = scene.effects.emitters[index];
         // The box's lattice, as for a fluid block; its thickness along v.
@@ -158,11 +164,11 @@ EffectList<D> make_effects(const Scene& scene) {
                              fmt::format("no lattice site of the box lies within {} m of its "
                                          "axis; give a radius of at least half a spacing ({} m)",
                                          *e.radius, spacing / 2));
-        effects.push_back(std::make_unique<Emitter<D>>(Box<D>{to_vec<D>(e.min), to_vec<D>(e.max)},
+        sources.push_back(std::make_unique<Emitter<D>>(Box<D>{to_vec<D>(e.min), to_vec<D>(e.max)},
                                                        spacing, std::move(sites), velocity,
                                                        thickness, e.start, e.end));
     }
-    return effects;
+    return sources;
 }
 
 template <int D>
@@ -170,7 +176,8 @@ Simulation<D> make_simulation(const Scene& scene, const Derived& derived) {
     const Params<D> params = make_params<D>(scene, derived);
     return Simulation<D>(
         params, make_initial_state<D>(scene, derived), make_solver<D>(scene.solver.name, params),
-        make_neighbour_search<D>(scene.solver.neighbour_search), make_effects<D>(scene));
+        make_neighbour_search<D>(scene.solver.neighbour_search), make_effects<D>(scene),
+        make_sources<D>(scene));
 }
 
 template std::vector<Paddle<2>> make_paddles<2>(const Scene&);
@@ -181,6 +188,8 @@ template State<2> make_initial_state<2>(const Scene&, const Derived&);
 template State<3> make_initial_state<3>(const Scene&, const Derived&);
 template EffectList<2> make_effects<2>(const Scene&);
 template EffectList<3> make_effects<3>(const Scene&);
+template SourceList<2> make_sources<2>(const Scene&);
+template SourceList<3> make_sources<3>(const Scene&);
 template Simulation<2> make_simulation<2>(const Scene&, const Derived&);
 template Simulation<3> make_simulation<3>(const Scene&, const Derived&);
 

@@ -23,6 +23,10 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived);
 template <int D>
 EffectList<D> make_effects(const Scene& scene);
 
+// The particle sources the scene lists (effects.emitters), in its order.
+template <int D>
+SourceList<D> make_sources(const Scene& scene);
+
 template <int D>
 Simulation<D> make_simulation(const Scene& scene, const Derived& derived);
 

@@ -2,7 +2,7 @@
 // Density by kernel summation over the neighbours, the particle itself included
 // (Müller et al. 2003, eq. 3; the seed's density):  rho_i = sum_j m W(|r_i - r_j|).
 
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary_particles.hpp"
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/neighbours/neighbour_sum.hpp"
 #include "sph/params.hpp"

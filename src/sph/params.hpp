@@ -3,8 +3,8 @@
 // `const Params&` to every stage. Changing quantities live in State.
 
 #include "sph/kernels.hpp"
-#include "sph/obstacles.hpp"
-#include "sph/paddles.hpp"
+#include "sph/boundaries/obstacles.hpp"
+#include "sph/boundaries/paddles.hpp"
 #include "sph/vec.hpp"
 
 #include <cmath>

@@ -22,7 +22,7 @@
 // scratch, kept between steps), not once per pair: a division per pair was a
 // fifth of the loop's time.
 
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary_particles.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
 #include "sph/effects/laminar_viscosity.hpp"
 #include "sph/headroom.hpp"

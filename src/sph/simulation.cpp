@@ -1,59 +1,21 @@
 #include "sph/simulation.hpp"
 
+#include "sph/boundaries/boundary_set.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
 namespace sph {
 
-namespace {
-
-// The one set of boundary particles the solvers see: the domain walls' when
-// they are particles, and the obstacles' shells. None when neither exists.
-template <int D>
-std::optional<BoundaryParticles<D>> make_boundary(const Params<D>& p) {
-    const Real lattice_volume = p.mass / p.rest_density;
-    BoundarySamples<D> samples = sample_obstacles<D>(p.obstacles, p.spacing, p.h, lattice_volume);
-    if (p.walls == WallModel::particles) {
-        const auto walls =
-            BoundaryParticles<D>::box_walls(p.domain, p.spacing, p.h, lattice_volume);
-        if (samples.positions.empty())
-            return walls;
-        samples.positions.insert(samples.positions.end(), walls.positions().begin(),
-                                 walls.positions().end());
-        samples.volumes.insert(samples.volumes.end(), walls.volumes().begin(),
-                               walls.volumes().end());
-    } else if (samples.positions.empty()) {
-        return std::nullopt;
-    }
-    return BoundaryParticles<D>(std::move(samples.positions), std::move(samples.volumes), p.h);
-}
-
-// The paddles' shells join the set as its moving particles, after the static
-// ones (a set of their own when there are no static ones).
-template <int D>
-std::optional<BoundaryParticles<D>> add_paddles(const Params<D>& p,
-                                                std::optional<BoundaryParticles<D>> boundary) {
-    if (p.paddles.empty())
-        return boundary;
-    if (!boundary)
-        boundary.emplace(std::vector<Vec<D>>{}, std::vector<Real>{}, p.h);
-    PaddleSamples<D> samples =
-        sample_paddles<D>(p.paddles, p.spacing, p.h, p.mass / p.rest_density);
-    boundary->add_moving(std::move(samples.positions), std::move(samples.volumes),
-                         std::move(samples.paddle));
-    return boundary;
-}
-
-} // namespace
-
 template <int D>
 Simulation<D>::Simulation(const Params<D>& params, State<D> initial,
                           std::unique_ptr<Solver<D>> solver,
-                          std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects)
+                          std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects,
+                          SourceList<D> sources)
     : params_(params), state_(std::move(initial)), solver_(std::move(solver)),
-      search_(std::move(search)), effects_(std::move(effects)),
-      boundary_(add_paddles(params_, make_boundary(params_))) {
+      search_(std::move(search)), effects_(std::move(effects)), sources_(std::move(sources)),
+      boundaries_(make_boundaries(params_)), boundary_(make_boundary_particles(params_)) {
     inspect_start();
 }
 
@@ -64,7 +26,7 @@ void Simulation<D>::inspect_start() {
     // Untimed: the stage times are the run's, which starts after this.
     auto ctx = context();
     ctx.stages = nullptr;
-    ctx.place_paddles(params_, time_);
+    ctx.place_boundaries(time_);
     solver_->update_fields(params_, state_, ctx);
     // A compressed start (blocks overlapping, a mass too large for the
     // spacing) stores energy the equation of state turns into motion: what
@@ -100,15 +62,16 @@ template <int D>
 Real Simulation<D>::next_dt() const {
     if (params_.time_step.fixed)
         return params_.time_step.dt;
-    StageTimes::Scope timed(&stages_, "time step");
+    StageTimes::Scope timed(&stages_, Stage::time_step);
     ExtremeRates rates = measure_rates(state_);
-    for (const auto& effect : effects_) {
+    // What no particle shows yet: gravity before the first step, the speed
+    // new particles enter with, the speed a paddle gives the fluid beside it.
+    for (const auto& effect : effects_)
         rates.max_acceleration = std::max(rates.max_acceleration, effect->body_acceleration());
-        rates.max_speed = std::max(rates.max_speed, effect->speed());
-    }
-    // A paddle moves the fluid beside it as fast as it goes itself.
-    for (const Paddle<D>& paddle : params_.paddles)
-        rates.max_speed = std::max(rates.max_speed, paddle.peak_speed());
+    for (const auto& source : sources_)
+        rates.max_speed = std::max(rates.max_speed, source->speed());
+    for (const auto& boundary : boundaries_)
+        rates.max_speed = std::max(rates.max_speed, boundary->speed());
     return stable_time_step(params_, solver_->time_step_model(), rates,
                             diffusion_viscosity(effects_));
 }
@@ -120,7 +83,7 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
         ctx.dt = dt;
         ctx.start_time = time_ + Real(k) * dt;
         // The paddles where they are when the step starts.
-        ctx.place_paddles(params_, ctx.start_time);
+        ctx.place_boundaries(ctx.start_time);
         const StepReport report = solver_->step(params_, dt, state_, ctx);
         ++steps_;
         ++counters_.steps;
@@ -130,7 +93,7 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
         counters_.pressure_iterations += report.pressure_iterations;
         counters_.divergence_iterations += report.divergence_iterations;
         counters_.obstacle_pushes += report.obstacle_pushes;
-        StageTimes::Scope timed(&stages_, "watchdog");
+        StageTimes::Scope timed(&stages_, Stage::watchdog);
         if (auto problem = inspect_step(params_, state_, dt))
             return problem;
     }
@@ -146,7 +109,7 @@ void Simulation<D>::reorder_particles() {
     steps_since_reorder_ = (steps_since_reorder_ + 1) % params_.reorder_every;
     if (!due)
         return;
-    StageTimes::Scope timed(&stages_, "reorder");
+    StageTimes::Scope timed(&stages_, Stage::reorder);
     // From the positions (and memory order) alone, never from the last
     // find's lists, so that frames and outputs cannot change the order.
     std::span<const std::uint32_t> order = search_->cell_order(state_.position, params_.h);
@@ -162,18 +125,23 @@ void Simulation<D>::reorder_particles() {
 }
 
 template <int D>
+void Simulation<D>::emit_particles() {
+    for (const auto& source : sources_) {
+        StageTimes::Scope timed(&stages_, StageName::of(*source));
+        source->emit(params_, time_, state_);
+    }
+}
+
+template <int D>
 void Simulation<D>::step_by(Real dt) {
     // Between steps, before anything is sized or saved for this one.
     reorder_particles();
-    // Effects that change the particle set (emitters) act first, outside
-    // the watchdog's retries, so a retried step keeps what they added.
-    for (const auto& effect : effects_) {
-        StageTimes::Scope timed(&stages_, effect->name());
-        effect->before_step(params_, time_, state_);
-    }
+    // The sources act first, outside the watchdog's retries, so a retried
+    // step keeps what they added.
+    emit_particles();
     // Copy assignment reuses saved_'s memory: no allocation once sizes settle.
     {
-        StageTimes::Scope timed(&stages_, "watchdog");
+        StageTimes::Scope timed(&stages_, Stage::watchdog);
         saved_ = state_;
     }
     const std::uint64_t steps_before = steps_;
@@ -238,7 +206,7 @@ void Simulation<D>::advance_to(Real t) {
 template <int D>
 void Simulation<D>::update_fields() {
     auto ctx = context();
-    ctx.place_paddles(params_, time_);
+    ctx.place_boundaries(time_);
     solver_->update_fields(params_, state_, ctx);
 }
 

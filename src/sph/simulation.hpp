@@ -1,12 +1,14 @@
 #pragma once
 // One simulation: fixed parameters, the particle state, and the parts a step is
-// built from (solver, neighbour search, wall particles, effects), all chosen
-// once from the scene. Time advances by the adaptive step (time_step.hpp) or
+// built from (solver, neighbour search, effects, boundaries and their
+// particles, particle sources), all chosen once from the scene. Time advances by the adaptive step (time_step.hpp) or
 // a fixed one; callers take frames at times they choose, which the steps
 // land on exactly.
 
+#include "sph/boundaries/boundary.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/solvers/solver.hpp"
+#include "sph/sources/source.hpp"
 #include "sph/step_counters.hpp"
 #include "sph/watchdog.hpp"
 
@@ -20,10 +22,11 @@ namespace sph {
 template <int D>
 class Simulation {
   public:
-    // The boundary particles are made here: the domain walls' when
-    // params.walls asks for them, and the obstacles'.
+    // The boundaries are made here from params (walls, obstacles, paddles,
+    // boundary_set.hpp), with their particles.
     Simulation(const Params<D>& params, State<D> initial, std::unique_ptr<Solver<D>> solver,
-               std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects);
+               std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects,
+               SourceList<D> sources = {});
 
     // One step of the largest stable dt (or the fixed one). The watchdog
     // checks it; a failed step is retried from the state before it, split in
@@ -57,6 +60,8 @@ class Simulation {
     // Neighbours as the last step or update_fields() found them.
     const NeighbourList& neighbours() const { return neighbours_; }
     const EffectList<D>& effects() const { return effects_; }
+    const SourceList<D>& sources() const { return sources_; }
+    const BoundaryList<D>& boundaries() const { return boundaries_; }
     // Null when the walls reflect and there is no obstacle or paddle. The
     // paddles' particles are where the last step (or update_fields()) put them.
     const BoundaryParticles<D>* boundary() const { return boundary_ ? &*boundary_ : nullptr; }
@@ -70,7 +75,7 @@ class Simulation {
   private:
     StepContext<D> context() {
         StepContext<D> ctx{*search_, neighbours_, boundary(), boundary_neighbours_,
-                           effects_, &stages_};
+                           effects_, boundaries_, &stages_};
         ctx.start_time = time_;
         ctx.output_pressure = output_fields_.pressure;
         if (boundary_ && boundary_->has_moving())
@@ -84,6 +89,8 @@ class Simulation {
     std::string start_cause() const;
     // Advances by dt under the watchdog (see step()).
     void step_by(Real dt);
+    // The sources add the particles due by now (emitters).
+    void emit_particles();
     // Every params.reorder_every steps: the particle arrays (the state's, the
     // solver's, the effects') sorted by cell, at the current positions.
     void reorder_particles();
@@ -95,6 +102,8 @@ class Simulation {
     std::unique_ptr<Solver<D>> solver_;
     std::unique_ptr<NeighbourSearch<D>> search_;
     EffectList<D> effects_;
+    SourceList<D> sources_;
+    BoundaryList<D> boundaries_;
     std::optional<BoundaryParticles<D>> boundary_;
     NeighbourList neighbours_;
     NeighbourList boundary_neighbours_;

@@ -14,8 +14,9 @@ trap 'rm -rf "$work"' EXIT
     { cat "$work/cpack.log"; exit 1; }
 deb="$(ls "$work"/pkg/sphclip_*.deb)"
 echo "package: $(basename "$deb")"
-dpkg-deb -I "$deb" | grep -E "^ (Package|Version|Architecture|Depends|Recommends):"
-dpkg-deb -I "$deb" | grep -q "^ Depends:.*libegl" || { echo "no libegl in Depends"; exit 1; }
+info="$(dpkg-deb -I "$deb")"
+grep -E "^ (Package|Version|Architecture|Depends|Recommends):" <<<"$info"
+grep -q "^ Depends:.*libegl" <<<"$info" || { echo "no libegl in Depends"; exit 1; }
 
 root="$work/root"
 dpkg-deb -x "$deb" "$root"

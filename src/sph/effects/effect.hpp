@@ -3,7 +3,7 @@
 // built once from the scene: an effect the scene does not name is not in the
 // list, allocates nothing and costs nothing per step.
 
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary_particles.hpp"
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/params.hpp"
 #include "sph/scene_key.hpp"
@@ -66,14 +66,8 @@ class Effect {
     // The term a solver may compute for it inside its pressure pass (then
     // telling apply_effects to skip it); none: it runs on its own.
     virtual PressurePassTerm pressure_pass_term() const { return PressurePassTerm::none; }
-    // Changes the particle set before a step that starts at `time` (an
-    // emitter adds particles); most effects do nothing here.
-    virtual void before_step(const Params<D>&, Real /*time*/, State<D>&) {}
-    // The speed it gives the particles it makes (0 if none), for the time
-    // step's first estimate.
-    virtual Real speed() const { return 0; }
-    // Bytes of the arrays it keeps (its own per-particle arrays, its
-    // sites); an effect the scene does not name is not built and holds none.
+    // Bytes of the arrays it keeps (its own per-particle arrays); an
+    // effect the scene does not name is not built and holds none.
     virtual std::size_t bytes() const { return 0; }
     // The particle arrays were reordered between steps (State::permute with
     // `order`): per-particle arrays kept from one step to the next must

@@ -29,7 +29,7 @@
 // and, x_ii being 0, nothing to its acceleration. That needs a kernel whose
 // gradient is finite at r = 0 (smooth_at_origin: not the seed's spiky one).
 
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary_particles.hpp"
 #include "sph/headroom.hpp"
 #include "sph/neighbours/cell_neighbourhoods.hpp"
 #include "sph/neighbours/neighbour_list.hpp"

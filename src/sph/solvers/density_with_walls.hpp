@@ -12,7 +12,7 @@ template <int D, class Kernel>
 void find_neighbours_and_density(const Params<D>& params, const Kernel& kernel,
                                  StepContext<D>& context, State<D>& state) {
     context.find_neighbours(state.position, params.h);
-    auto timed = context.time("density");
+    auto timed = context.time(Stage::density);
     compute_density(params, kernel, context.neighbours, state);
     if (context.boundary)
         add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours, state);

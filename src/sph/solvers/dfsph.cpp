@@ -1,11 +1,8 @@
 #include "sph/solvers/dfsph.hpp"
 
-#include "sph/boundary.hpp"
 #include "sph/headroom.hpp"
 #include "sph/integrate.hpp"
 #include "sph/neighbours/neighbour_sum.hpp"
-#include "sph/obstacles.hpp"
-#include "sph/paddles.hpp"
 #include "sph/pair_direction.hpp"
 #include "sph/solvers/density_with_walls.hpp"
 
@@ -16,7 +13,7 @@
 // Notation. With g_ij = m grad W_ij (fluid pairs) and w_ib = rho0 V_b grad W_ib
 // (wall pairs), the rate of compression is
 //   D rho_i / Dt = sum_j g_ij . (v_i - v_j) + sum_b w_ib . (v_i - v_b)
-// (v_b = 0 but on a paddle, sph/paddles.hpp; Bender & Koschier 2017, eq. 9's
+// (v_b = 0 but on a paddle, sph/boundaries/paddles.hpp; Bender & Koschier 2017, eq. 9's
 // source with Akinci's boundary term, as SPlisHSPlasH's TimeStepDFSPH)
 // and a velocity correction with per-particle stiffness s
 //   dv_i = - sum_j (s_i + s_j) g_ij - sum_b s_i w_ib
@@ -41,7 +38,7 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
     const std::size_t n = state.size();
     find_neighbours_and_density(params, kernel, context, state);
 
-    auto timed = context.time("pressure solve");
+    auto timed = context.time(Stage::pressure_solve);
     factor_.resize(n);
     stiffness_.resize(n);
     stiffness_sum_.resize(n);
@@ -253,7 +250,7 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
         prepare(params, kernel, context, state);
         // 2. Divergence-free velocities (the previous step's end, Algorithm 1 line 12).
         {
-            auto timed = context.time("divergence solve");
+            auto timed = context.time(Stage::divergence_solve);
             report.divergence_iterations = solve(params, dt, Target::divergence, context, state);
         }
     });
@@ -261,11 +258,11 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
     context.apply_effects(params, state);
     {
-        auto timed = context.time("integration");
+        auto timed = context.time(Stage::integration);
         kick(dt, state);
     }
     // 4. Constant density: v so that rho* = rho0; p_i = rho_i^2 s_i / dt.
-    auto solve_timed = std::make_optional<StageTimes::Scope>(context.stages, "pressure solve");
+    auto solve_timed = std::make_optional<StageTimes::Scope>(context.stages, Stage::pressure_solve);
     report.pressure_iterations = solve(params, dt, Target::density, context, state);
     // The pressure itself moves nothing (the solves work with stiffnesses):
     // it is an output, computed only when one reads it.
@@ -278,17 +275,13 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     }
     previous_dt_ = dt;
     solve_timed.reset();
-    // 5. Move; the reflecting box and the obstacles' surfaces stay behind the
-    // boundary particles as a last guard.
+    // 5. Move; the boundaries keep the particles out as a last guard, behind
+    // the boundary particles.
     {
-        auto timed = context.time("integration");
+        auto timed = context.time(Stage::integration);
         drift(dt, state);
     }
-    auto timed = context.time("boundary");
-    reflect_at_box(params, state);
-    report.obstacle_pushes = push_out_of_obstacles<D>(params.obstacles, state);
-    report.obstacle_pushes +=
-        push_out_of_paddles<D>(params.paddles, context.start_time + dt, state);
+    report.obstacle_pushes = context.last_guard(context.start_time + dt, state);
     return report;
 }
 

@@ -7,10 +7,7 @@
 // Verlet's second half-kick uses the accelerations at the new positions, which
 // the next step's first half-kick reuses: one force evaluation per step.
 
-#include "sph/boundary.hpp"
 #include "sph/integrate.hpp"
-#include "sph/obstacles.hpp"
-#include "sph/paddles.hpp"
 #include "sph/solvers/solver.hpp"
 
 namespace sph {
@@ -27,25 +24,27 @@ class ExplicitSolver : public Solver<D> {
             if (!accelerations_current_ || state.size() != accelerations_for_)
                 compute_accelerations(params, state, context);
             {
-                auto timed = context.time("integration");
+                auto timed = context.time(Stage::integration);
                 kick(dt / 2, state);
                 drift(dt, state);
             }
-            report.obstacle_pushes = reflect(params, dt, state, context);
+            // The last guard: the boundaries keep the particles out.
+            report.obstacle_pushes = context.last_guard(context.start_time + dt, state);
             // The forces at the new positions see the paddles where they are then.
-            context.place_paddles(params, context.start_time + dt);
+            context.place_boundaries(context.start_time + dt);
             compute_accelerations(params, state, context);
-            auto timed = context.time("integration");
+            auto timed = context.time(Stage::integration);
             kick(dt / 2, state);
             accelerations_current_ = true;
             accelerations_for_ = state.size();
         } else {
             compute_accelerations(params, state, context);
             {
-                auto timed = context.time("integration");
+                auto timed = context.time(Stage::integration);
                 integrate_symplectic_euler(dt, state);
             }
-            report.obstacle_pushes = reflect(params, dt, state, context);
+            // The last guard: the boundaries keep the particles out.
+            report.obstacle_pushes = context.last_guard(context.start_time + dt, state);
         }
         return report;
     }
@@ -56,17 +55,6 @@ class ExplicitSolver : public Solver<D> {
                                        StepContext<D>& context) = 0;
 
   private:
-    // The last guards: the reflecting box, then the obstacles' surfaces and
-    // the paddles' at the step's end. Returns the particles put back out of
-    // obstacles and paddles.
-    static std::uint64_t reflect(const Params<D>& params, Real dt, State<D>& state,
-                                 StepContext<D>& context) {
-        auto timed = context.time("boundary");
-        reflect_at_box(params, state);
-        const std::uint64_t pushed = push_out_of_obstacles<D>(params.obstacles, state);
-        return pushed + push_out_of_paddles<D>(params.paddles, context.start_time + dt, state);
-    }
-
     bool accelerations_current_ = false;
     std::size_t accelerations_for_ = 0;
 };

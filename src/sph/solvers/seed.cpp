@@ -24,14 +24,14 @@ void SeedSolver<D>::compute_accelerations(const Params<D>& params, State<D>& sta
         context.find_neighbours(state.position, params.h);
         // 2. Density by summation (the seed's poly6); p = K (rho - rho0) / rho0.
         {
-            auto timed = context.time("density");
+            auto timed = context.time(Stage::density);
             compute_density(params, kernel, context.neighbours, state);
             compute_pressure_linear(params, state);
         }
         // 3. The seed's pair force f_ij, a = f / rho: its pressure half, and
         // its viscous half (effects/seed_viscosity.hpp) when the scene has
         // it, in the same pass over the pairs (timed as "pressure").
-        auto timed = context.time("pressure");
+        auto timed = context.time(Stage::pressure);
         compute_seed_pressure(params, kernel, context.neighbours, viscosity, state);
     });
     // 4. Gravity and the other effects the scene names.

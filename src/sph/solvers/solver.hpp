@@ -2,11 +2,10 @@
 // The interface every solver implements. A solver's step() reads like its
 // algorithm: a named call per stage, the stages themselves in their own files.
 
-#include "sph/boundary_particles.hpp"
+#include "sph/boundaries/boundary.hpp"
 #include "sph/effects/effect.hpp"
 #include "sph/effects/viscosity_keys.hpp"
 #include "sph/neighbours/neighbour_search.hpp"
-#include "sph/paddles.hpp"
 #include "sph/stage_times.hpp"
 #include "sph/time_step.hpp"
 
@@ -21,8 +20,8 @@
 namespace sph {
 
 // What a step needs besides parameters and state: the neighbour search and the
-// lists it fills (reused every step), the wall particles when the walls are
-// made of particles, and the scene's effects.
+// lists it fills (reused every step), the boundary particles when there are
+// any, the scene's effects and its boundaries.
 template <int D>
 struct StepContext {
     NeighbourSearch<D>& search;
@@ -30,6 +29,7 @@ struct StepContext {
     const BoundaryParticles<D>* boundary; // null: walls reflect (the seed's)
     NeighbourList& boundary_neighbours;   // fluid -> boundary particles
     const EffectList<D>& effects;
+    const BoundaryList<D>& boundaries; // walls, obstacles, paddles (boundary_set.hpp)
     StageTimes* stages = nullptr; // where stage times go; null: not timed
     Real dt = 0;                  // s, the step being taken (XSPH reads it)
     Real start_time = 0;          // s, when the step starts (paddles move with it)
@@ -38,38 +38,53 @@ struct StepContext {
     // nothing in it moves.
     BoundaryParticles<D>* moving_boundary = nullptr;
 
-    // Moves the paddles' boundary particles to where their motions have them
-    // at time t, with their velocities (sph/paddles.hpp).
-    void place_paddles(const Params<D>& params, Real t) {
+    // Moves the boundary particles that move (the paddles') to where their
+    // motions have them at time t, with their velocities.
+    void place_boundaries(Real t) {
         if (!moving_boundary)
             return;
-        auto timed = time("paddles");
-        move_paddles<D>(params.paddles, t, *moving_boundary);
+        for (const auto& b : boundaries)
+            if (b->moves()) {
+                auto timed = time(StageName::of(*b));
+                b->place(t, *moving_boundary);
+            }
+    }
+
+    // The last guard, at the end of a step that ends at time t: what the
+    // boundaries put back (boundary.hpp), each timed under its own name; the
+    // pushes stats.csv counts.
+    std::uint64_t last_guard(Real t, State<D>& state) {
+        return sph::last_guard<D>(boundaries, t, state, stages);
     }
 
     // Times the stage that lives as long as the returned scope.
-    StageTimes::Scope time(std::string_view stage) { return {stages, stage}; }
+    StageTimes::Scope time(StageName stage) { return {stages, stage}; }
 
     // Fills both lists for the current positions.
     void find_neighbours(std::span<const Vec<D>> positions, Real h) {
         {
-            auto timed = time("neighbour search");
+            auto timed = time(Stage::neighbour_search);
             search.find(positions, h, neighbours);
         }
         if (boundary) {
-            auto timed = time("boundary");
+            auto timed = time(Stage::boundary_neighbours);
             boundary->find_neighbours(positions, boundary_neighbours);
         }
     }
 
     // Adds every effect's acceleration, each timed under its own name, but
-    // those in `merged`, which the solver added in a pass of its own.
+    // those in `merged`, which the solver added in a pass of its own, the
+    // stage `merged_into`: the stage table lists them as done there.
     void apply_effects(const Params<D>& params, State<D>& state,
-                       std::span<const Effect<D>* const> merged = {}) {
+                       std::span<const Effect<D>* const> merged = {},
+                       Stage merged_into = Stage::pressure) {
         for (const auto& effect : effects) {
-            if (std::find(merged.begin(), merged.end(), effect.get()) != merged.end())
+            if (std::find(merged.begin(), merged.end(), effect.get()) != merged.end()) {
+                if (stages)
+                    stages->add_within(StageName::of(*effect), merged_into);
                 continue;
-            auto timed = time(effect->name());
+            }
+            auto timed = time(StageName::of(*effect));
             effect->apply(params, {neighbours, boundary, boundary_neighbours, dt}, state);
         }
     }

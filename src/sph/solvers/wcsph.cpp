@@ -21,10 +21,10 @@ void density(const Params<D>& params, const Kernel& kernel, StepContext<D>& cont
         find_neighbours_and_density(params, kernel, context, state);
     } else if constexpr (Kernel::smooth_at_origin) {
         {
-            auto timed = context.time("neighbour search");
+            auto timed = context.time(Stage::neighbour_search);
             cells.find_cells(state.position, context.boundary, params.h);
         }
-        auto timed = context.time("density");
+        auto timed = context.time(Stage::density);
         cells.density(params, kernel, context.boundary, state);
     } else {
         throw std::logic_error("wcsph: single precision needs a smooth kernel");
@@ -36,7 +36,7 @@ template <int D, class Kernel>
 void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
                           CellPasses<D>& cells, State<D>& state) {
     density(params, kernel, context, cells, state);
-    auto timed = context.time("pressure");
+    auto timed = context.time(Stage::pressure);
     compute_pressure_tait(params, state);
 }
 
@@ -60,7 +60,7 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
         density_and_pressure(params, kernel, context, cells_, state);
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij) grad W,
         // walls included, and Morris's viscosity.
-        auto timed = context.time("pressure");
+        auto timed = context.time(Stage::pressure);
         if constexpr (std::decay_t<decltype(kernel)>::smooth_at_origin) {
             if (params.precision == Precision::single) {
                 cells_.pressure_acceleration(params, kernel, context.boundary, viscosities, state);

@@ -1,0 +1,310 @@
+#include "sph/boundaries/boundary_particles.hpp"
+
+#include "sph/headroom.hpp"
+#include "sph/lattice.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numeric>
+
+namespace sph {
+
+template <int D>
+typename BoundaryParticles<D>::Cell BoundaryParticles<D>::cell_of(const Grid& grid,
+                                                                  const Vec<D>& x) const {
+    // Clamped before the conversion: a point far outside (or not finite)
+    // lands outside the grid instead of overflowing.
+    Cell c;
+    for (int a = 0; a < D; ++a) {
+        const Real k = std::floor((x[a] - grid.origin[a]) / h_);
+        c[a] = k >= -2 && k <= Real(grid.cells[a] + 1) ? static_cast<std::int64_t>(k) : -2;
+    }
+    return c;
+}
+
+template <int D>
+std::size_t BoundaryParticles<D>::cell_index(const Grid& grid, const Cell& c) {
+    std::size_t index = 0;
+    for (int a = D - 1; a >= 0; --a)
+        index = index * static_cast<std::size_t>(grid.cells[a]) + static_cast<std::size_t>(c[a]);
+    return index;
+}
+
+template <int D>
+template <bool Moving, class Visit>
+void BoundaryParticles<D>::for_each_in(const Grid& grid, const Vec<D>& x, Visit&& visit) const {
+    const Cell centre = cell_of(grid, x);
+    if (!grid.near_any.empty()) {
+        bool inside = true;
+        for (int a = 0; a < D; ++a)
+            inside = inside && centre[a] >= 0 && centre[a] < grid.cells[a];
+        if (inside && !grid.near_any[cell_index(grid, centre)])
+            return;
+    }
+    Cell lo, hi;
+    for (int a = 0; a < D; ++a) {
+        lo[a] = std::max<std::int64_t>(centre[a] - 1, 0);
+        hi[a] = std::min<std::int64_t>(centre[a] + 1, grid.cells[a] - 1);
+        if (lo[a] > hi[a])
+            return; // far outside the grid's box
+    }
+    const Real r2 = h_ * h_;
+    auto visit_cell = [&](const Cell& c) {
+        const std::size_t k = cell_index(grid, c);
+        for (std::uint32_t e = grid.cell_start[k]; e < grid.cell_start[k + 1]; ++e) {
+            const std::uint32_t b = Moving ? moving_order_[e] : e;
+            if (squared_length<D>(x - positions_[b]) < r2)
+                visit(b);
+        }
+    };
+    if constexpr (D == 2) {
+        for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+            for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+                visit_cell(Cell(i, j));
+    } else {
+        for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+                    visit_cell(Cell(i, j, k));
+    }
+}
+
+template <int D>
+template <class Visit>
+void BoundaryParticles<D>::for_each_near(const Vec<D>& x, Visit&& visit) const {
+    for_each_in<false>(grid_, x, visit);
+    if (has_moving())
+        for_each_in<true>(moving_grid_, x, visit);
+}
+
+template <int D>
+std::size_t BoundaryParticles<D>::fit_grid(Grid& grid, std::span<const Vec<D>> points) const {
+    Vec<D> lo = points[0], hi = points[0];
+    for (const Vec<D>& x : points) {
+        lo = glm::min(lo, x);
+        hi = glm::max(hi, x);
+    }
+    grid.origin = lo;
+    std::size_t total = 1;
+    for (int a = 0; a < D; ++a) {
+        grid.cells[a] = static_cast<std::int64_t>(std::floor((hi[a] - lo[a]) / h_)) + 1;
+        total *= static_cast<std::size_t>(grid.cells[a]);
+    }
+    return total;
+}
+
+template <int D>
+void BoundaryParticles<D>::mark_near_cells(Grid& grid) {
+    grid.near_any.assign(grid.cell_start.size() - 1, 0);
+    auto mark_around = [&](const Cell& c) {
+        Cell lo, hi;
+        for (int a = 0; a < D; ++a) {
+            lo[a] = std::max<std::int64_t>(c[a] - 1, 0);
+            hi[a] = std::min<std::int64_t>(c[a] + 1, grid.cells[a] - 1);
+        }
+        if constexpr (D == 2) {
+            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+                    grid.near_any[cell_index(grid, Cell(i, j))] = 1;
+        } else {
+            for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+                for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                    for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+                        grid.near_any[cell_index(grid, Cell(i, j, k))] = 1;
+        }
+    };
+    Cell c(0);
+    for (std::size_t k = 0; k + 1 < grid.cell_start.size(); ++k) {
+        if (grid.cell_start[k + 1] > grid.cell_start[k])
+            mark_around(c);
+        // The next cell, x fastest (cell_index's order).
+        for (int a = 0; a < D; ++a) {
+            if (++c[a] < grid.cells[a])
+                break;
+            c[a] = 0;
+        }
+    }
+}
+
+template <int D>
+std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> positions) {
+    const std::size_t n = positions.size();
+    if (n == 0) {
+        grid_.cell_start.assign(2, 0);
+        for (int a = 0; a < D; ++a)
+            grid_.cells[a] = 1;
+        return {};
+    }
+    const std::size_t total = fit_grid(grid_, positions);
+    // Counting sort by cell: positions end up grouped cell by cell.
+    std::vector<std::size_t> cell(n);
+    std::vector<std::uint32_t>& cell_start = grid_.cell_start;
+    cell_start.assign(total + 1, 0);
+    for (std::size_t b = 0; b < n; ++b) {
+        cell[b] = cell_index(grid_, cell_of(grid_, positions[b]));
+        ++cell_start[cell[b] + 1];
+    }
+    std::partial_sum(cell_start.begin(), cell_start.end(), cell_start.begin());
+    std::vector<std::uint32_t> next(cell_start.begin(), cell_start.end() - 1);
+    std::vector<std::uint32_t> destination(n);
+    positions_.resize(n);
+    for (std::size_t b = 0; b < n; ++b) {
+        destination[b] = next[cell[b]]++;
+        positions_[destination[b]] = positions[b];
+    }
+    mark_near_cells(grid_);
+    return destination;
+}
+
+template <int D>
+void BoundaryParticles<D>::add_moving(std::vector<Vec<D>> rest, std::vector<Real> volumes,
+                                      std::vector<std::uint32_t> group) {
+    assert(rest.size() == volumes.size() && rest.size() == group.size());
+    assert(!has_moving()); // one set of moving particles
+    moving_begin_ = positions_.size();
+    positions_.insert(positions_.end(), rest.begin(), rest.end());
+    volumes_.insert(volumes_.end(), volumes.begin(), volumes.end());
+    rest_ = std::move(rest);
+    group_ = std::move(group);
+    velocities_.resize(positions_.size(), Vec<D>(0));
+    refresh_moving_grid();
+}
+
+template <int D>
+void BoundaryParticles<D>::refresh_moving_grid() {
+    const std::span<const Vec<D>> moving =
+        std::span<const Vec<D>>(positions_).subspan(moving_begin_);
+    const std::size_t n = moving.size();
+    if (n == 0)
+        return;
+    // Counting sort of the moving particles' indices by cell; their data stay
+    // in place, in the order their motion writes them. Sizes settle after the
+    // first call: no allocation per step.
+    const std::size_t total = fit_grid(moving_grid_, moving);
+    std::vector<std::uint32_t>& cell_start = moving_grid_.cell_start;
+    cell_start.assign(total + 1, 0);
+    moving_cell_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        moving_cell_[k] = cell_index(moving_grid_, cell_of(moving_grid_, moving[k]));
+        ++cell_start[moving_cell_[k] + 1];
+    }
+    std::partial_sum(cell_start.begin(), cell_start.end(), cell_start.begin());
+    moving_next_.assign(cell_start.begin(), cell_start.end() - 1);
+    moving_order_.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+        moving_order_[moving_next_[moving_cell_[k]]++] =
+            static_cast<std::uint32_t>(moving_begin_ + k);
+}
+
+template <int D>
+BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, Real volume)
+    : h_(h) {
+    build_grid(std::move(positions));
+    volumes_.assign(positions_.size(), volume);
+    moving_begin_ = positions_.size();
+    velocities_.assign(positions_.size(), Vec<D>(0));
+}
+
+template <int D>
+BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes,
+                                        Real h)
+    : h_(h) {
+    assert(positions.size() == volumes.size());
+    const std::vector<std::uint32_t> destination = build_grid(std::move(positions));
+    volumes_.resize(volumes.size());
+    for (std::size_t b = 0; b < volumes.size(); ++b)
+        volumes_[destination[b]] = volumes[b];
+    moving_begin_ = positions_.size();
+    velocities_.assign(positions_.size(), Vec<D>(0));
+}
+
+template <int D>
+BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, KernelKind kernel)
+    : h_(h) {
+    build_grid(std::move(positions));
+    const std::size_t n = positions_.size();
+    moving_begin_ = n;
+    velocities_.assign(n, Vec<D>(0));
+    // V_b = 1 / sum_k W_bk, the particle itself included (Akinci et al. 2012, eq. 4).
+    volumes_.resize(n);
+    with_kernel<D>(kernel, h, [&](const auto& W) {
+#pragma omp parallel for schedule(static)
+        for (std::size_t b = 0; b < n; ++b) {
+            Real sum = 0;
+            for_each_near(positions_[b], [&](std::uint32_t k) {
+                sum += W.W(std::sqrt(squared_length<D>(positions_[b] - positions_[k])));
+            });
+            volumes_[b] = 1 / sum;
+        }
+    });
+}
+
+template <int D>
+BoundaryParticles<D> BoundaryParticles<D>::box_walls(const Box<D>& domain, Real spacing, Real h,
+                                                     Real lattice_volume) {
+    const auto layers = static_cast<std::int64_t>(std::ceil(h / spacing));
+    glm::vec<D, std::int64_t, glm::defaultp> inside;
+    for (int a = 0; a < D; ++a)
+        inside[a] = static_cast<std::int64_t>(lattice_count(domain.min[a], domain.max[a], spacing));
+    std::vector<Vec<D>> positions;
+    auto add_if_outside = [&](const glm::vec<D, std::int64_t, glm::defaultp>& k) {
+        bool outside = false;
+        Vec<D> x;
+        for (int a = 0; a < D; ++a) {
+            outside = outside || k[a] < 0 || k[a] >= inside[a];
+            x[a] = domain.min[a] + (Real(k[a]) + Real(0.5)) * spacing;
+        }
+        if (outside)
+            positions.push_back(x);
+    };
+    if constexpr (D == 2) {
+        for (std::int64_t j = -layers; j < inside[1] + layers; ++j)
+            for (std::int64_t i = -layers; i < inside[0] + layers; ++i)
+                add_if_outside({i, j});
+    } else {
+        for (std::int64_t k = -layers; k < inside[2] + layers; ++k)
+            for (std::int64_t j = -layers; j < inside[1] + layers; ++j) {
+                // Interior rows: only the first and last layers are outside.
+                const bool shell_row = k < 0 || k >= inside[2] || j < 0 || j >= inside[1];
+                for (std::int64_t i = -layers; i < inside[0] + layers; ++i) {
+                    if (!shell_row && i == 0)
+                        i = inside[0]; // skip the box's interior
+                    add_if_outside({i, j, k});
+                }
+            }
+    }
+    return BoundaryParticles(std::move(positions), h, lattice_volume);
+}
+
+template <int D>
+void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>> query,
+                                           NeighbourList& out) const {
+    const std::size_t n = query.size();
+    out.start.resize(n + 1);
+    out.start[0] = 0;
+    if (positions_.empty()) {
+        std::fill(out.start.begin(), out.start.end(), 0);
+        out.size_for(0);
+        return;
+    }
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint32_t count = 0;
+        for_each_near(query[i], [&](std::uint32_t) { ++count; });
+        out.start[i + 1] = count;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+        out.start[i + 1] += out.start[i];
+    out.size_for(out.start[n]);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+        std::uint32_t* row = out.index.data() + out.start[i];
+        for_each_near(query[i], [&](std::uint32_t b) { *row++ = b; });
+    }
+}
+
+template class BoundaryParticles<2>;
+template class BoundaryParticles<3>;
+
+} // namespace sph

@@ -489,9 +489,9 @@ TEST_CASE("outputs choose the fields computed for them, and change no bit of the
     REQUIRE(exported.exit_code == 0);
     CHECK(json::parse(read_text(tmp / "bare" / "run.json")).at("output_fields").at("pressure") ==
           false);
-    CHECK(json::parse(read_text(tmp / "exported" / "run.json"))
-              .at("output_fields")
-              .at("pressure") == true);
+    CHECK(
+        json::parse(read_text(tmp / "exported" / "run.json")).at("output_fields").at("pressure") ==
+        true);
     CHECK(stats_without_wall_time(tmp / "bare" / "stats.csv") ==
           stats_without_wall_time(tmp / "exported" / "stats.csv"));
     // The exported pressure is the solve's: positive at the bottom of the block.
@@ -807,8 +807,9 @@ TEST_CASE("output.name picks the folder under out/ and cannot leave it", "[cli]"
     }
 }
 
-TEST_CASE("a fast preview (--fast-preview) renders half-size frames with the fastest preset and says so",
-          "[cli][render][fast_preview]") {
+TEST_CASE(
+    "a fast preview (--fast-preview) renders half-size frames with the fastest preset and says so",
+    "[cli][render][fast_preview]") {
     TempFolder tmp;
     const fs::path out = tmp / "out";
     // An odd half (161 x 91) is rounded to even: 162 x 92.
@@ -867,8 +868,8 @@ TEST_CASE("run's stage table names the obstacles and paddles the scene declares,
     })");
     const fs::path out = tmp / "out";
     // Not quiet: the table is printed at the end.
-    const auto result = sphclip(tmp, {"run", scene.string(), "--out", out.string(), "--no-png",
-                                      "--no-mp4"});
+    const auto result =
+        sphclip(tmp, {"run", scene.string(), "--out", out.string(), "--no-png", "--no-mp4"});
     INFO(result.output);
     REQUIRE(result.exit_code == 0);
     const json run = json::parse(read_text(out / "run.json"));

@@ -32,11 +32,11 @@ bool contains(const std::string& text, const std::string& part) {
 fs::path tank_frame(const TempFolder& tmp, const std::string& name, double range_top,
                     const std::string& backend = "auto") {
     const fs::path out = tmp / name;
-    const auto result = run_sphclip(
-        tmp, {"run", std::string(SPHCLIP_SOURCE_DIR) + "/scenes/hydrostatic_2d.json", "--out",
-              out.string(), "--quiet", "--no-mp4", "--threads", "1", "--duration", "0.001",
-              "--fps", "1000", "--backend", backend, "--set",
-              "render.range=[0," + std::to_string(range_top) + "]"});
+    const auto result =
+        run_sphclip(tmp, {"run", std::string(SPHCLIP_SOURCE_DIR) + "/scenes/hydrostatic_2d.json",
+                          "--out", out.string(), "--quiet", "--no-mp4", "--threads", "1",
+                          "--duration", "0.001", "--fps", "1000", "--backend", backend, "--set",
+                          "render.range=[0," + std::to_string(range_top) + "]"});
     INFO(result.output);
     REQUIRE(result.exit_code == 0);
     return out / "frames" / "frame_00000.png";

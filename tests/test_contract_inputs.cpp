@@ -55,7 +55,8 @@ std::string png_claiming(std::uint32_t width, std::uint32_t height, const TempFo
 
 } // namespace
 
-TEST_CASE("inputs: only regular files are read, whatever the path looks like", "[contract][inputs]") {
+TEST_CASE("inputs: only regular files are read, whatever the path looks like",
+          "[contract][inputs]") {
     TempFolder tmp;
     const sph::InputLimit limit{"test file", 1000};
     write_text(tmp / "ok.txt", "hello");
@@ -151,12 +152,11 @@ TEST_CASE("inputs: compare refuses a --diff that is one of its inputs, by inode"
     fs::create_hard_link(tmp / "ref.png", tmp / "ref_hard.png");
 
     const std::string ref = (tmp / "ref.png").string(), test = (tmp / "test.png").string();
-    for (const auto& [diff, role] :
-         {std::pair{test, "test image"},
-          {ref, "reference"},
-          {(tmp / "test_link.png").string(), "test image"},
-          {(tmp / "ref_hard.png").string(), "reference"},
-          {(tmp.path() / "." / "test.png").string(), "test image"}}) {
+    for (const auto& [diff, role] : {std::pair{test, "test image"},
+                                     {ref, "reference"},
+                                     {(tmp / "test_link.png").string(), "test image"},
+                                     {(tmp / "ref_hard.png").string(), "reference"},
+                                     {(tmp.path() / "." / "test.png").string(), "test image"}}) {
         INFO(diff);
         const auto result = run_sphclip(tmp, {"compare", ref, test, "--diff", diff});
         CHECK(result.exit_code == 2);

@@ -47,8 +47,7 @@ const std::string small_scene = R"({
 
 // sphclip started in the background with stdout and stderr to `log` (or
 // stdout to the write end `stdout_fd` of a pipe); the pid.
-pid_t start_sphclip(const std::vector<std::string>& args, const fs::path& log,
-                    int stdout_fd = -1) {
+pid_t start_sphclip(const std::vector<std::string>& args, const fs::path& log, int stdout_fd = -1) {
     const pid_t pid = fork();
     REQUIRE(pid >= 0);
     if (pid == 0) {
@@ -117,8 +116,8 @@ TEST_CASE("output folder: a second run into a running run's folder is refused, n
     CHECK(run.at("status") == "interrupted");
     CHECK(run.at("command").get<std::string>().find("--duration 100") != std::string::npos);
     // After A, the folder is free again.
-    CHECK(run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--out", out.string(),
-                            "--no-mp4", "--threads", "1", "--quiet"})
+    CHECK(run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--out", out.string(), "--no-mp4",
+                            "--threads", "1", "--quiet"})
               .exit_code == 0);
 }
 
@@ -126,8 +125,9 @@ TEST_CASE("output folder: nothing is written or deleted through a symbolic link"
           "[contract][output_folder]") {
     TempFolder tmp;
     write_text(tmp / "scene.json", small_scene);
-    const std::vector<std::string> run{"run", (tmp / "scene.json").string(), "--out",
-                                       (tmp / "out").string(), "--threads", "1", "--quiet"};
+    const std::vector<std::string> run{
+        "run",    (tmp / "scene.json").string(), "--out", (tmp / "out").string(), "--threads", "1",
+        "--quiet"};
 
     SECTION("a file that links elsewhere") {
         fs::create_directories(tmp / "out");
@@ -174,8 +174,8 @@ TEST_CASE("output folder: entries of the wrong type and a user's files are refus
     TempFolder tmp;
     write_text(tmp / "scene.json", small_scene);
     const fs::path out = tmp / "out";
-    const std::vector<std::string> run{"run", (tmp / "scene.json").string(), "--out",
-                                       out.string(), "--threads", "1", "--quiet"};
+    const std::vector<std::string> run{
+        "run", (tmp / "scene.json").string(), "--out", out.string(), "--threads", "1", "--quiet"};
     fs::create_directories(out);
 
     SECTION("run.json is a folder") {
@@ -209,8 +209,9 @@ TEST_CASE("output folder: a re-run removes every output of the earlier run, and 
     TempFolder tmp;
     write_text(tmp / "scene.json", small_scene);
     const fs::path out = tmp / "out";
-    std::vector<std::string> run{"run", (tmp / "scene.json").string(), "--out", out.string(),
-                                 "--threads", "1", "--export", "vtk"};
+    std::vector<std::string> run{
+        "run", (tmp / "scene.json").string(), "--out", out.string(), "--threads", "1", "--export",
+        "vtk"};
     REQUIRE(run_sphclip(tmp, run).exit_code == 0);
     REQUIRE(fs::exists(out / "clip.mp4"));
     // Leftovers of a run that was killed: temporaries.

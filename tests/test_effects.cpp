@@ -2,8 +2,8 @@
 // and each effect does what its paper says.
 #include "io/input_error.hpp"
 #include "io/scene_setup.hpp"
-#include "sph/sources/emitter.hpp"
 #include "sph/effects/surface_tension.hpp"
+#include "sph/sources/emitter.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -84,11 +84,11 @@ TEST_CASE("the step holds exactly the effects the scene lists", "[effects]") {
     const Override inviscid{"material.viscosity", "0"};
     CHECK(effect_names(make_effects<2>(default_scene({inviscid}))) == Names{"gravity"});
     CHECK(effect_names(make_effects<2>(default_scene({{"effects", "{}"}, inviscid}))).empty());
-    CHECK(effect_names(make_effects<2>(default_scene(
-              {{"effects", R"({"surface_tension": {"gamma": 2}})"}, inviscid}))) ==
+    CHECK(effect_names(make_effects<2>(
+              default_scene({{"effects", R"({"surface_tension": {"gamma": 2}})"}, inviscid}))) ==
           Names{"surface_tension"});
-    const auto both = make_effects<2>(default_scene(
-        {{"effects", R"({"gravity": [0, -1], "surface_tension": {}})"}, inviscid}));
+    const auto both = make_effects<2>(
+        default_scene({{"effects", R"({"gravity": [0, -1], "surface_tension": {}})"}, inviscid}));
     REQUIRE(effect_names(both) == Names{"gravity", "surface_tension"});
     // Defaults: gamma 1.
     CHECK(dynamic_cast<const SurfaceTension<2>&>(*both[1]).coefficient() == 1);

@@ -36,10 +36,18 @@ void check_padded(const NeighbourList& list) {
 TEST_CASE("every neighbour list ends in a vector's width of padding", "[neighbours]") {
     const auto x = random_cloud(500, 1);
     NeighbourList list;
-    SECTION("all pairs") { AllPairs<2>().find(x, 0.1, list); }
-    SECTION("hash") { SpatialHash<2>().find(x, 0.1, list); }
-    SECTION("sorted grid") { SortedGrid<2>().find(x, 0.1, list); }
-    SECTION("sorted grid, radius 0") { SortedGrid<2>().find(x, 0, list); }
+    SECTION("all pairs") {
+        AllPairs<2>().find(x, 0.1, list);
+    }
+    SECTION("hash") {
+        SpatialHash<2>().find(x, 0.1, list);
+    }
+    SECTION("sorted grid") {
+        SortedGrid<2>().find(x, 0.1, list);
+    }
+    SECTION("sorted grid, radius 0") {
+        SortedGrid<2>().find(x, 0, list);
+    }
     SECTION("sorted grid, reused for fewer pairs") {
         SortedGrid<2> grid;
         grid.find(x, 0.3, list);
@@ -73,8 +81,8 @@ TEST_CASE("row sums over neighbours equal plain sums, rows of every length", "[n
             plain_vector += value[j] * (x[i] - x[j]);
         }
         const Real summed = sum_over_neighbours(list, i, [&](std::uint32_t j) { return value[j]; });
-        const Vec<2> summed_vector = sum_over_neighbours(
-            list, i, [&](std::uint32_t j) { return value[j] * (x[i] - x[j]); });
+        const Vec<2> summed_vector =
+            sum_over_neighbours(list, i, [&](std::uint32_t j) { return value[j] * (x[i] - x[j]); });
         CHECK(summed == Approx(plain).epsilon(1e-14));
         CHECK(summed_vector.x == Approx(plain_vector.x).margin(1e-14));
         CHECK(summed_vector.y == Approx(plain_vector.y).margin(1e-14));

@@ -7,9 +7,9 @@
 #include "io/scene_setup.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+#include "sph/boundaries/obstacles.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
-#include "sph/boundaries/obstacles.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

@@ -118,10 +118,11 @@ TEST_CASE("impostors look like the seed's meshes", "[render]") {
         const Image mesh = render_scene(tiny_scene(dimension, "mesh"), "auto");
         // An 80-triangle sphere is faceted: the same picture up to its edges,
         // which differ all round every sphere (a share, not a count).
-        const CompareResult result = compare_images(
-            impostor, mesh,
-            {.max_mean_difference = 4.0, .pixel_threshold = 64, .max_different_percent = 3.0,
-             .max_different_pixels = std::uint64_t(-1)});
+        const CompareResult result = compare_images(impostor, mesh,
+                                                    {.max_mean_difference = 4.0,
+                                                     .pixel_threshold = 64,
+                                                     .max_different_percent = 3.0,
+                                                     .max_different_pixels = std::uint64_t(-1)});
         INFO("dimension " << dimension << ": mean difference " << result.mean_difference
                           << ", different " << result.different_percent << "%");
         CHECK(result.match);

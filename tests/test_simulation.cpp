@@ -391,8 +391,7 @@ TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][
     // dfsph without viscosity: its two solves, no viscosity stage.
     CHECK(stages_of({{"solver.name", "dfsph"}, {"material.viscosity", "0"}}) ==
           Names{"boundary neighbours", "density", "divergence solve", "gravity", "integration",
-                "neighbour search", "pressure solve", "reorder", "time step", "walls",
-                "watchdog"});
+                "neighbour search", "pressure solve", "reorder", "time step", "walls", "watchdog"});
 }
 
 TEST_CASE("the stage table names each obstacle, paddle and emitter the scene declares, and "
@@ -423,7 +422,8 @@ TEST_CASE("the stage table names each obstacle, paddle and emitter the scene dec
         for (int k = 0; k < 3; ++k)
             sim.step();
         Names declared{"gravity", "obstacles", "paddles", "walls"};
-        if (std::string(solver) == "wcsph") // its default artificial viscosity, in its pressure pass
+        if (std::string(solver) ==
+            "wcsph") // its default artificial viscosity, in its pressure pass
             declared.insert(declared.begin(), "artificial_viscosity");
         CHECK(parts_of(sim.stage_times()) == declared);
         for (const auto& e : sim.stage_times().entries())
@@ -433,16 +433,17 @@ TEST_CASE("the stage table names each obstacle, paddle and emitter the scene dec
             }
     }
     // An emitter is a part too; without obstacles or paddles they have no row.
-    auto sim = make_simulation<2>(small_dam_break(
-        {{"material.viscosity", "0"},
-         {"effects", R"({"emitters": [{"min": [0.1, 0.1], "max": [0.112, 0.14],
+    auto sim = make_simulation<2>(
+        small_dam_break({{"material.viscosity", "0"},
+                         {"effects", R"({"emitters": [{"min": [0.1, 0.1], "max": [0.112, 0.14],
                                        "velocity": [1, 0], "start": 0, "end": 1}]})"}}));
     for (int k = 0; k < 3; ++k)
         sim.step();
     CHECK(parts_of(sim.stage_times()) == Names{"emitters", "walls"});
 }
 
-TEST_CASE("a field no output reads is not computed, and the run is the same", "[simulation][fields]") {
+TEST_CASE("a field no output reads is not computed, and the run is the same",
+          "[simulation][fields]") {
     for (const char* solver : {"seed", "wcsph", "dfsph"}) {
         INFO(solver);
         const Scene scene = small_dam_break({{"solver.name", solver}});

@@ -14,9 +14,8 @@
 #include "sph/pressure_acceleration.hpp"
 #include "sph/single_precision/cell_passes.hpp"
 
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <string>
 #include <vector>
 
@@ -41,8 +40,8 @@ Scene flowing_scene(const std::string& kernel, const std::string& precision) {
         {"fluid.spacing", three ? "0.008" : "0.005"},
         {"domain.min", "[1000, 1000" + z0 + "]"},
         {"domain.max", "[1000.2, 1000.12" + z + "]"},
-        {"fluid.blocks", "[{\"min\": [1000, 1000" + z0 + "], \"max\": [1000.08, 1000.08" + z +
-                             "]}]"},
+        {"fluid.blocks",
+         "[{\"min\": [1000, 1000" + z0 + "], \"max\": [1000.08, 1000.08" + z + "]}]"},
         {"effects.paddles", "[{\"min\": [1000.09, 1000" + z0 + "], \"max\": [1000.11, 1000.1" + z +
                                 "], \"motion\": \"linear\", \"velocity\": [-0.5, 0" +
                                 (three ? ", 0" : "") + "]}]"},
@@ -102,9 +101,8 @@ void check_against_double(const std::string& kernel_name) {
             cells.density(params, kernel, walls, in_single);
             Real worst_density = 0;
             for (std::size_t i = 0; i < in_double.size(); ++i)
-                worst_density = std::max(worst_density, std::abs(in_single.density[i] /
-                                                                     in_double.density[i] -
-                                                                 1));
+                worst_density = std::max(worst_density,
+                                         std::abs(in_single.density[i] / in_double.density[i] - 1));
             CHECK(worst_density < 2e-6);
             // The same pressure, so that the accelerations compare the passes only.
             in_single.density = in_double.density;
@@ -126,7 +124,8 @@ void check_against_double(const std::string& kernel_name) {
             // agrees to float's round-off of the whole sum.
             for (std::size_t s = 1; s < sets.size(); ++s) {
                 INFO("viscosity set " << s);
-                std::vector<Vec<D>> share_double(doubles[s].size()), share_single(doubles[s].size());
+                std::vector<Vec<D>> share_double(doubles[s].size()),
+                    share_single(doubles[s].size());
                 for (std::size_t i = 0; i < share_double.size(); ++i) {
                     share_double[i] = doubles[s][i] - doubles[0][i];
                     share_single[i] = singles[s][i] - singles[0][i];
@@ -148,22 +147,23 @@ TEST_CASE("single-precision cell passes agree with the double passes", "[single]
     }
 }
 
-TEST_CASE("solver.precision: auto picks single where it can run, single says why not",
-          "[single]") {
+TEST_CASE("solver.precision: auto picks single where it can run, single says why not", "[single]") {
     CHECK(derive(default_scene({{"solver.name", "wcsph"}})).precision == Precision::single);
     // 3D: single only when asked for (even speed, more memory).
     CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"dimension", "3"}})).precision ==
           Precision::double_precision);
-    CHECK(derive(default_scene({{"solver.name", "wcsph"},
-                                {"dimension", "3"},
-                                {"solver.precision", "single"}}))
-              .precision == Precision::single);
-    CHECK(derive(default_scene({{"solver.name", "dfsph"}})).precision == Precision::double_precision);
-    CHECK(derive(default_scene({{"solver.name", "seed"}})).precision == Precision::double_precision);
+    CHECK(
+        derive(default_scene(
+                   {{"solver.name", "wcsph"}, {"dimension", "3"}, {"solver.precision", "single"}}))
+            .precision == Precision::single);
+    CHECK(derive(default_scene({{"solver.name", "dfsph"}})).precision ==
+          Precision::double_precision);
+    CHECK(derive(default_scene({{"solver.name", "seed"}})).precision ==
+          Precision::double_precision);
     CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"solver.neighbour_search", "hash"}}))
               .precision == Precision::double_precision);
-    CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"effects.xsph.epsilon", "0.5"}})).precision ==
-          Precision::double_precision);
+    CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"effects.xsph.epsilon", "0.5"}}))
+              .precision == Precision::double_precision);
     CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"solver.precision", "double"}}))
               .precision == Precision::double_precision);
     for (const std::vector<Override>& bad :

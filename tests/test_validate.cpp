@@ -94,8 +94,8 @@ TEST_CASE("surge-front series are interpolated linearly and compared in range", 
 }
 
 TEST_CASE("the Martin & Moyce table ships in the repository's data/reference", "[validate]") {
-    const fs::path table =
-        fs::path(SPHCLIP_SOURCE_DIR) / "data" / "reference" / "martin_moyce_1952_surge_front_table2.csv";
+    const fs::path table = fs::path(SPHCLIP_SOURCE_DIR) / "data" / "reference" /
+                           "martin_moyce_1952_surge_front_table2.csv";
     REQUIRE(fs::exists(table));
     // Its source is named in its header.
     CHECK(sph::test::read_text(table).starts_with("# Martin J.C. & Moyce W.J. (1952)"));
@@ -193,7 +193,7 @@ TEST_CASE("a spreading current's half width and Huppert's front", "[validate]") 
     const double s = 0.01;
     auto frame = lattice_2d(6, 3, s, 1000, [](double) { return 0.0; });
     CHECK(sph::spreading_half_width(frame, s) == Approx(0.03)); // the block's own
-    add_particle(frame, 0.5, 0.005);                           // spray: ignored
+    add_particle(frame, 0.5, 0.005);                            // spray: ignored
     CHECK(sph::spreading_half_width(frame, s) == Approx(0.03));
     add_particle(frame, -0.01, 0.005); // fluid touching the left edge
     CHECK(sph::spreading_half_width(frame, s) == Approx(0.0375));

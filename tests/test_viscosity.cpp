@@ -14,8 +14,8 @@
 #include "sph/pressure_acceleration.hpp"
 
 #include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
 using namespace sph;
@@ -48,9 +48,8 @@ struct Patch {
         params = make_params<2>(scene, derive(scene));
         state = make_initial_state<2>(scene, derive(scene));
         AllPairs<2>().find(state.position, params.h, neighbours);
-        with_kernel<2>(params.kernel, params.h, [&](const auto& k) {
-            compute_density(params, k, neighbours, state);
-        });
+        with_kernel<2>(params.kernel, params.h,
+                       [&](const auto& k) { compute_density(params, k, neighbours, state); });
     }
 
     // Accelerations the effect alone gives, over a step of dt.
@@ -105,8 +104,8 @@ TEST_CASE("the scene gets the viscosity effects it asks for", "[viscosity][effec
     // effects.viscosity picks the model and mu; artificial viscosity and XSPH
     // on any solver, or off with a zero coefficient.
     {
-        const auto named = effects_of({{"solver.name", "wcsph"},
-                                       {"effects", R"({"viscosity": {"model": "seed", "mu": 3},
+        const auto named = effects_of(
+            {{"solver.name", "wcsph"}, {"effects", R"({"viscosity": {"model": "seed", "mu": 3},
                                                       "artificial_viscosity": {"alpha": 0},
                                                       "xsph": {}})"}});
         REQUIRE(effect_names(named) == Names{"viscosity", "xsph"});
@@ -114,9 +113,8 @@ TEST_CASE("the scene gets the viscosity effects it asks for", "[viscosity][effec
         CHECK(dynamic_cast<const Xsph<2>&>(*named[1]).epsilon() == 0.5);
     }
     {
-        const auto named = effects_of({{"solver.name", "dfsph"},
-                                       {"material.viscosity", "2"},
-                                       {"effects", R"({"viscosity": {},
+        const auto named = effects_of(
+            {{"solver.name", "dfsph"}, {"material.viscosity", "2"}, {"effects", R"({"viscosity": {},
                                                       "artificial_viscosity": {"alpha": 0.1}})"}});
         REQUIRE(effect_names(named) == Names{"viscosity", "artificial_viscosity"});
         CHECK(dynamic_cast<const LaminarViscosity<2>&>(*named[0]).mu() == 2);
@@ -155,7 +153,8 @@ TEST_CASE("every viscosity effect conserves momentum to rounding", "[viscosity][
     LaminarViscosity<2> morris(1.0);
     ArtificialViscosity<2> artificial(0.1);
     Xsph<2> xsph(0.5);
-    for (Effect<2>* effect : std::initializer_list<Effect<2>*>{&seed, &morris, &artificial, &xsph}) {
+    for (Effect<2>* effect :
+         std::initializer_list<Effect<2>*>{&seed, &morris, &artificial, &xsph}) {
         INFO(effect->name());
         const auto a = patch.accelerations(*effect);
         Vec<2> total(0);
@@ -184,8 +183,8 @@ TEST_CASE("wcsph's pressure pass adds both viscosities as their effects do",
         walls.find_neighbours(p.state.position, wall_neighbours);
         REQUIRE(wall_neighbours.pair_count() > 0);
         for (std::size_t i = 0; i < p.state.size(); ++i)
-            p.state.pressure[i] = 2000 * (p.state.density[i] / p.params.rest_density - 1) +
-                                  300 * std::sin(Real(i));
+            p.state.pressure[i] =
+                2000 * (p.state.density[i] / p.params.rest_density - 1) + 300 * std::sin(Real(i));
         ArtificialViscosity<2> artificial(0.1);
         LaminarViscosity<2> laminar(2.0);
         const MonaghanViscosity monaghan = artificial.pair_viscosity(p.params);
@@ -310,7 +309,8 @@ TEST_CASE("a honey-like fluid spreads as Huppert's viscous gravity current",
     }
 }
 
-TEST_CASE("the resolved viscosity effects survive run.json's scene read back", "[viscosity][scene]") {
+TEST_CASE("the resolved viscosity effects survive run.json's scene read back",
+          "[viscosity][scene]") {
     using Names = std::vector<std::string>;
     const std::vector<std::vector<Override>> scenes{
         {},

@@ -195,16 +195,16 @@ class ClipRun {
 
     void print_start() const {
         say("sphclip: {} ({}D, {} solver): {} particles, h = {:.4g} m, m = {:.4g} kg, "
-                   "dt = {:.4g} s, {} frames of {:.4g} s -> {}\n",
-                   scene_.name, D, scene_.solver.name, sim_.state().size(), derived_.h,
-                   derived_.mass, derived_.dt, frames_, scene_.duration, folder_.string());
+            "dt = {:.4g} s, {} frames of {:.4g} s -> {}\n",
+            scene_.name, D, scene_.solver.name, sim_.state().size(), derived_.h, derived_.mass,
+            derived_.dt, frames_, scene_.duration, folder_.string());
         if (options_.fast_preview)
             say("sphclip: fast preview: half-size frames ({}x{}), x264 preset {}\n",
-                       scene_.render.size[0], scene_.render.size[1], scene_.render.video_preset);
+                scene_.render.size[0], scene_.render.size[1], scene_.render.video_preset);
         if (render_)
             say("sphclip: rendering {}x{} with {} ({}, OpenGL {})\n", scene_.render.size[0],
-                       scene_.render.size[1], render_->gl_info().backend,
-                       render_->gl_info().renderer, render_->gl_info().version);
+                scene_.render.size[1], render_->gl_info().backend, render_->gl_info().renderer,
+                render_->gl_info().version);
     }
 
     RunEnd simulate_frames() {
@@ -275,20 +275,18 @@ class ClipRun {
         switch (end.status) {
         case RunStatus::completed:
             if (!options_.quiet)
-                say(
-                    "sphclip: done: {} steps, {} frames in {:.2f} s ({:.3g} particle-steps/s)\n{}",
+                say("sphclip: done: {} steps, {} frames in {:.2f} s ({:.3g} particle-steps/s)\n{}",
                     sim_.steps(), written_, seconds,
                     seconds > 0 ? double(sim_.particle_steps()) / seconds : 0.0,
                     stages_table(stages));
             return exit_success;
         case RunStatus::interrupted:
-            say(stderr, "sphclip: interrupted at t = {:.4g} s; {} frames kept in {}\n",
-                       sim_.time(), written_, folder_.string());
+            say(stderr, "sphclip: interrupted at t = {:.4g} s; {} frames kept in {}\n", sim_.time(),
+                written_, folder_.string());
             return exit_interrupted;
         case RunStatus::unstable:
-            say(stderr,
-                       "sphclip: error: {}\nsphclip: the {} frames before it are kept in {}.\n",
-                       end.error, written_, folder_.string());
+            say(stderr, "sphclip: error: {}\nsphclip: the {} frames before it are kept in {}.\n",
+                end.error, written_, folder_.string());
             return exit_unstable;
         case RunStatus::failed:
             break;

@@ -107,8 +107,8 @@ std::vector<std::string> reasons_for(const CompareResult& result, const CompareO
     if (result.different_box)
         reasons.push_back(fmt::format(
             "the differing pixels lie in x {}-{}, y {}-{} (the largest patch of them {} pixels)",
-            result.different_box->x_min, result.different_box->x_max,
-            result.different_box->y_min, result.different_box->y_max, result.largest_cluster));
+            result.different_box->x_min, result.different_box->x_max, result.different_box->y_min,
+            result.different_box->y_max, result.largest_cluster));
     return reasons;
 }
 

@@ -13,8 +13,7 @@ namespace sph {
 template <class... Args>
 void say(std::FILE* stream, fmt::format_string<Args...> format, Args&&... args) {
     const std::string text = fmt::format(format, std::forward<Args>(args)...);
-    if (std::fwrite(text.data(), 1, text.size(), stream) != text.size() ||
-        std::fflush(stream) != 0)
+    if (std::fwrite(text.data(), 1, text.size(), stream) != text.size() || std::fflush(stream) != 0)
         std::clearerr(stream); // lost with the terminal; later lines try again
 }
 

@@ -4,8 +4,8 @@
 #include "cli/compare_command.hpp"
 #include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/stop_signals.hpp"
 #include "cli/run_command.hpp"
+#include "cli/stop_signals.hpp"
 #include "cli/study_command.hpp"
 #include "cli/validate_command.hpp"
 #include "io/input_error.hpp"
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
         return sph::run_command(sph::run_options(run, join_arguments(argc, argv)));
     } catch (const sph::GlContextError& e) {
         sph::say(stderr, "sphclip: error: {}\nsphclip: (--no-png --no-mp4 runs need no OpenGL)\n",
-                   e.what());
+                 e.what());
         return sph::exit_no_gl_context;
     } catch (const sph::InputError& e) {
         sph::say(stderr, "sphclip: error: {}\n", e.what());

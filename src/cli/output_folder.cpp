@@ -27,8 +27,8 @@ struct OutputName {
     bool folder;
 };
 constexpr OutputName output_names[] = {
-    {"frames", true},     {"particles", true},     {"stats.csv", false},
-    {"run.json", false},  {"clip.mp4", false},     {"particles.pvd", false},
+    {"frames", true},    {"particles", true}, {"stats.csv", false},
+    {"run.json", false}, {"clip.mp4", false}, {"particles.pvd", false},
 };
 
 [[noreturn]] void refuse(const fs::path& folder, const std::string& problem) {
@@ -89,9 +89,9 @@ OutputFolder::OutputFolder(fs::path folder) : folder_(std::move(folder)) {
     const fs::path lock = folder_ / lock_name;
     lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (lock_fd_ < 0)
-        refuse(folder_, fmt::format("cannot open its lock file {}: {}", lock_name,
-                                    errno == ELOOP ? "it is a symbolic link"
-                                                   : std::strerror(errno)));
+        refuse(folder_,
+               fmt::format("cannot open its lock file {}: {}", lock_name,
+                           errno == ELOOP ? "it is a symbolic link" : std::strerror(errno)));
     if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
         if (errno == EWOULDBLOCK) {
             const std::string pid = holder_of(lock_fd_);
@@ -159,8 +159,7 @@ OutputFolder::OutputFolder(fs::path folder) : folder_(std::move(folder)) {
         if (is_folder) {
             std::size_t removed = 0;
             for (const auto& entry : fs::directory_iterator(path, ec))
-                if (is_frame_file(entry.path().filename().string()) &&
-                    fs::remove(entry.path(), ec))
+                if (is_frame_file(entry.path().filename().string()) && fs::remove(entry.path(), ec))
                     ++removed;
             if (removed > 0)
                 replaced_.push_back(fmt::format("{}/ ({} files)", name, removed));

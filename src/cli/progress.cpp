@@ -17,8 +17,8 @@ void Progress::update(std::uint64_t frame, std::uint64_t frames, double time, st
     drawn_ = true;
     const double rate = wall_seconds > 0 ? double(steps) / wall_seconds : 0;
     const double eta = frame > 0 ? wall_seconds / double(frame) * double(frames - 1 - frame) : 0;
-    say("\rframe {}/{}  t = {:.3f} s  {:.0f} steps/s  ETA {:.0f} s   ", frame + 1, frames,
-               time, rate, eta);
+    say("\rframe {}/{}  t = {:.3f} s  {:.0f} steps/s  ETA {:.0f} s   ", frame + 1, frames, time,
+        rate, eta);
 }
 
 void Progress::done() {

@@ -4,8 +4,8 @@
 #include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/output_folder.hpp"
-#include "cli/stop_signals.hpp"
 #include "cli/set_options.hpp"
+#include "cli/stop_signals.hpp"
 #include "io/input_error.hpp"
 #include "render/gl_context.hpp"
 
@@ -93,16 +93,17 @@ int run_command(const RunOptions& options) {
             make_gl_context(options.backend.empty() ? scene.render.backend : options.backend);
     // A stop asked for while the run was being set up: nothing is written.
     if (const int signal = StopSignals::received()) {
-        say(stderr, "sphclip: stopped by signal {} before the run started; nothing "
-                           "written\n",
-                   signal);
+        say(stderr,
+            "sphclip: stopped by signal {} before the run started; nothing "
+            "written\n",
+            signal);
         return exit_interrupted;
     }
     // Held until the run ends: no other run writes into the folder meanwhile.
     const OutputFolder output(folder);
     if (!output.replaced().empty() && !options.quiet)
         say("sphclip: replacing the earlier run in {}: removed {}\n", folder.string(),
-                   fmt::join(output.replaced(), ", "));
+            fmt::join(output.replaced(), ", "));
     if (options.threads > 0)
         omp_set_num_threads(options.threads);
     return run_clip(scene, folder, options, std::move(gl_context));

@@ -11,8 +11,8 @@ std::vector<StageRow> stage_rows(const StageTimes& simulation, const StageTimes&
     for (const StageTimes* times : {&simulation, &after, &overlapped})
         for (const auto& e : times->entries()) {
             if (e.within) {
-                rows.push_back({std::string(e.name), 0, 0, 0, false,
-                                std::string(stage_name(*e.within))});
+                rows.push_back(
+                    {std::string(e.name), 0, 0, 0, false, std::string(stage_name(*e.within))});
                 continue;
             }
             if (e.seconds <= 0)

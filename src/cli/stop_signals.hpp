@@ -28,7 +28,7 @@ class StopSignals {
     static constexpr int signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE};
 
   private:
-    struct sigaction previous_[std::size(signals)] {};
+    struct sigaction previous_[std::size(signals)]{};
 };
 
 } // namespace sph

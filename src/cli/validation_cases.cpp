@@ -19,11 +19,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Tolerances of the verdict (docs/validation.md, "How the cases are scored"): loose bands, chosen rather
-// than derived. The dam break: mean |dZ| within 0.25, about 6% of the table's
-// last Z (4.1). The tank: layer-mean pressure within 5% RMS of the bottom
-// pressure, and nothing faster than 1% of sqrt(g H), the speed of a long wave
-// on water of depth H.
+// Tolerances of the verdict (docs/validation.md, "How the cases are scored"): loose bands, chosen
+// rather than derived. The dam break: mean |dZ| within 0.25, about 6% of the table's last Z (4.1).
+// The tank: layer-mean pressure within 5% RMS of the bottom pressure, and nothing faster than 1% of
+// sqrt(g H), the speed of a long wave on water of depth H.
 constexpr double dam_break_max_mean_dZ = 0.25;
 constexpr double hydrostatic_max_pressure_rms_pct = 5.0;
 constexpr double hydrostatic_max_speed_fraction = 0.01;
@@ -215,8 +214,8 @@ CaseScore score_spreading(const ValidationCase& c, const fs::path& run, const fs
     if (scene.gravity <= 0 || scene.viscosity <= 0 || scene.dimension != 2)
         throw std::runtime_error(run.string() +
                                  ": the spreading case needs 2D, gravity and the viscosity effect");
-    const double area = (scene.block_max[0] - scene.block_min[0]) *
-                        (scene.block_max[1] - scene.block_min[1]) / 2;
+    const double area =
+        (scene.block_max[0] - scene.block_min[0]) * (scene.block_max[1] - scene.block_min[1]) / 2;
     const double nu = scene.viscosity / scene.rest_density;
     const auto times = frame_times(run);
     std::string table = "frame,time_s,half_width_m,huppert_m,error_pct\n";
@@ -229,7 +228,8 @@ CaseScore score_spreading(const ValidationCase& c, const fs::path& run, const fs
         const double width = spreading_half_width(read_particle_frame(file), scene.spacing);
         const double huppert = huppert_front(scene.gravity, area, nu, times[f]);
         const double error = 100 * (width - huppert) / huppert;
-        table += fmt::format("{},{:.6g},{:.6g},{:.6g},{:.4g}\n", f, times[f], width, huppert, error);
+        table +=
+            fmt::format("{},{:.6g},{:.6g},{:.6g},{:.4g}\n", f, times[f], width, huppert, error);
         if (times[f] >= spreading_from_s - 1e-9) {
             sum += std::abs(error);
             worst = std::max(worst, std::abs(error));
@@ -237,8 +237,8 @@ CaseScore score_spreading(const ValidationCase& c, const fs::path& run, const fs
         }
     }
     if (count == 0)
-        throw std::runtime_error(
-            fmt::format("{}: no frame at or after {} s to compare", run.string(), spreading_from_s));
+        throw std::runtime_error(fmt::format("{}: no frame at or after {} s to compare",
+                                             run.string(), spreading_from_s));
     write_file_atomically(folder / "spreading_front.csv", table);
     CaseScore score;
     score.error = sum / double(count);
@@ -255,17 +255,18 @@ CaseScore score_spreading(const ValidationCase& c, const fs::path& run, const fs
                      {"tolerance_front_error_mean_pct", spreading_max_mean_error_pct}};
     if (plot) {
         plot_png(folder / "spreading_front.png",
-                 fmt::format("set title \"{} ({}): front of a viscous column against Huppert "
-                             "(1982)\\nmean error {:.2f}% from t = {} s, max {:.2f}%\" noenhanced\n"
-                             "set xlabel 't (s)'\n"
-                             "set ylabel 'half width of the current (m)'\n"
-                             "set key bottom right box opaque\n"
-                             "set yrange [0:*]\n"
-                             "plot 'spreading_front.csv' using 'time_s':'half_width_m' with "
-                             "linespoints lw 2 pt 7 ps 0.6 lc rgb '#1f77b4' title 'simulation', \\\n"
-                             "     'spreading_front.csv' using 'time_s':'huppert_m' with lines lw 2 "
-                             "dt 2 lc rgb '#d62728' title 'Huppert (1982): 1.411 (g A^3 t / 3ν)^{{1/5}}'\n",
-                             c.name, label, score.error, spreading_from_s, worst));
+                 fmt::format(
+                     "set title \"{} ({}): front of a viscous column against Huppert "
+                     "(1982)\\nmean error {:.2f}% from t = {} s, max {:.2f}%\" noenhanced\n"
+                     "set xlabel 't (s)'\n"
+                     "set ylabel 'half width of the current (m)'\n"
+                     "set key bottom right box opaque\n"
+                     "set yrange [0:*]\n"
+                     "plot 'spreading_front.csv' using 'time_s':'half_width_m' with "
+                     "linespoints lw 2 pt 7 ps 0.6 lc rgb '#1f77b4' title 'simulation', \\\n"
+                     "     'spreading_front.csv' using 'time_s':'huppert_m' with lines lw 2 "
+                     "dt 2 lc rgb '#d62728' title 'Huppert (1982): 1.411 (g A^3 t / 3ν)^{{1/5}}'\n",
+                     c.name, label, score.error, spreading_from_s, worst));
     }
     return score;
 }
@@ -310,8 +311,9 @@ CaseScore score_case(const ValidationCase& c, const fs::path& run, const fs::pat
                      const fs::path& reference_folder, bool plot, const std::string& label) {
     CaseScore score = c.kind == CaseKind::dam_break
                           ? score_dam_break(c, run, folder, reference_folder, plot, label)
-                      : c.kind == CaseKind::spreading ? score_spreading(c, run, folder, plot, label)
-                                                      : score_hydrostatic(c, run, folder, plot, label);
+                      : c.kind == CaseKind::spreading
+                          ? score_spreading(c, run, folder, plot, label)
+                          : score_hydrostatic(c, run, folder, plot, label);
     score.metrics["case"] = c.name;
     score.metrics["solver"] = solver_of(read_run_outputs(run).scene);
     score.metrics["pass"] = score.pass;

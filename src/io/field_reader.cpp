@@ -120,5 +120,4 @@ std::string format_vector(const Vec3& v, int dimension) {
     return fmt::format("[{}]", fmt::join(v.begin(), v.begin() + dimension, ", "));
 }
 
-
 } // namespace sph

@@ -30,7 +30,7 @@ struct CompareResult {
     double max_difference = 0;    // largest |test - reference| of any channel, 0-255
     double different_percent = 0; // pixels beyond pixel_threshold, percent of all pixels
     double psnr_db = 0; // peak signal-to-noise ratio over RGB, dB; infinity when identical
-    std::uint64_t different_pixels = 0; // pixels beyond pixel_threshold
+    std::uint64_t different_pixels = 0;    // pixels beyond pixel_threshold
     std::optional<PixelBox> different_box; // where they are; none when there are none
     // The most differing pixels that touch one another (8-neighbours): one
     // compact change, told apart from the same count scattered.

@@ -36,7 +36,9 @@ void read_key(FieldReader& r, const std::string& prefix, const Key<S>& key, cons
               S& out, int dimension) {
     const std::string path = key_path(prefix, key.path);
     const int n = vector_size(key.size, dimension);
-    auto shown = [&](const std::string& value) { return key.absent.empty() ? value : key.absent; };
+    auto shown = [&](const std::string& value) {
+        return key.absent.empty() ? value : key.absent;
+    };
     auto choice_doc = [&] {
         return fmt::format("{} One of: {}.", key.doc, fmt::join(key.choices, ", "));
     };
@@ -50,13 +52,12 @@ void read_key(FieldReader& r, const std::string& prefix, const Key<S>& key, cons
                 out.*field = v ? r.checked_number(path, *v, key.bound) : fallback.*field;
             } else if constexpr (std::is_same_v<F, std::optional<double> S::*>) {
                 r.record(path, "number or null", key.unit, key.absent, key.doc);
-                out.*field = v ? std::optional(r.checked_number(path, *v, key.bound))
-                               : fallback.*field;
+                out.*field =
+                    v ? std::optional(r.checked_number(path, *v, key.bound)) : fallback.*field;
             } else if constexpr (std::is_same_v<F, int S::*>) {
                 r.record(path, "integer", key.unit, shown(std::to_string(fallback.*field)),
                          key.doc);
-                out.*field =
-                    v ? r.checked_integer(path, *v, key.min, key.max) : fallback.*field;
+                out.*field = v ? r.checked_integer(path, *v, key.min, key.max) : fallback.*field;
             } else if constexpr (std::is_same_v<F, bool S::*>) {
                 r.record(path, "true or false", key.unit, fallback.*field ? "true" : "false",
                          key.doc);
@@ -83,8 +84,8 @@ void read_key(FieldReader& r, const std::string& prefix, const Key<S>& key, cons
                          key.unit, shown(format_vector(fallback.*field, n)), key.doc);
                 out.*field = v ? r.checked_vector(path, *v, n) : fallback.*field;
             } else if constexpr (std::is_same_v<F, std::optional<Vec3> S::*>) {
-                r.record(path, fmt::format("array of {} numbers or null", n), key.unit,
-                         key.absent, key.doc);
+                r.record(path, fmt::format("array of {} numbers or null", n), key.unit, key.absent,
+                         key.doc);
                 out.*field = v ? std::optional(r.checked_vector(path, *v, n)) : fallback.*field;
             } else if constexpr (std::is_same_v<F, std::array<int, 2> S::*>) {
                 const auto& d = fallback.*field;
@@ -128,7 +129,9 @@ void write_keys(json& node, const KeyTable<S>& table, const S& value, int dimens
     for (const Key<S>& key : table) {
         json& out = key.path.empty() ? node : node[key.path];
         const int n = vector_size(key.size, dimension);
-        auto vector = [n](const Vec3& v) { return std::vector<double>(v.begin(), v.begin() + n); };
+        auto vector = [n](const Vec3& v) {
+            return std::vector<double>(v.begin(), v.begin() + n);
+        };
         std::visit(
             [&](auto field) {
                 using F = decltype(field);

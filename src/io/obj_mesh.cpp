@@ -4,14 +4,14 @@
 #include "io/input_error.hpp"
 
 #include <algorithm>
-#include <fmt/format.h>
 #include <cmath>
 #include <cstdlib>
+#include <fmt/format.h>
 #include <functional>
 #include <map>
 #include <string_view>
-#include <vector>
 #include <tiny_obj_loader.h>
+#include <vector>
 
 namespace sph {
 
@@ -120,18 +120,16 @@ std::shared_ptr<const TriangleMesh> read_obj_mesh(const std::filesystem::path& p
     try {
         text = read_input_file(path, mesh_file_limit);
     } catch (const FileReadError& e) {
-        throw InputError(scene_file, field,
-                         fmt::format("\"{}\": cannot read the mesh file: {}", path.string(),
-                                     e.reason));
+        throw InputError(
+            scene_file, field,
+            fmt::format("\"{}\": cannot read the mesh file: {}", path.string(), e.reason));
     }
     return parse_obj_mesh(text, path, scale, offset, scene_file, field);
 }
 
-std::shared_ptr<const TriangleMesh> parse_obj_mesh(std::string_view text,
-                                                   const std::filesystem::path& path, Real scale,
-                                                   const Vec<3>& offset,
-                                                   const std::string& scene_file,
-                                                   const std::string& field) {
+std::shared_ptr<const TriangleMesh>
+parse_obj_mesh(std::string_view text, const std::filesystem::path& path, Real scale,
+               const Vec<3>& offset, const std::string& scene_file, const std::string& field) {
     auto fail = [&](const std::string& why) {
         throw InputError(scene_file, field, fmt::format("\"{}\": {}", path.string(), why));
     };

@@ -27,10 +27,8 @@ std::shared_ptr<const TriangleMesh> read_obj_mesh(const std::filesystem::path& p
                                                   const std::string& field);
 
 // The same from the file's text; `path` names it in errors.
-std::shared_ptr<const TriangleMesh> parse_obj_mesh(std::string_view text,
-                                                   const std::filesystem::path& path, Real scale,
-                                                   const Vec<3>& offset,
-                                                   const std::string& scene_file,
-                                                   const std::string& field);
+std::shared_ptr<const TriangleMesh>
+parse_obj_mesh(std::string_view text, const std::filesystem::path& path, Real scale,
+               const Vec<3>& offset, const std::string& scene_file, const std::string& field);
 
 } // namespace sph

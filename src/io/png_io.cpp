@@ -10,8 +10,8 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <libdeflate.h>
-#include <png.h>
 #include <memory>
+#include <png.h>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,7 +56,6 @@ unsigned char* sphclip_zlib_compress(unsigned char* data, int data_len, int* out
 #define STB_IMAGE_WRITE_STATIC
 #define STBIW_ZLIB_COMPRESS sphclip_zlib_compress
 #include <stb_image_write.h>
-
 
 namespace sph {
 
@@ -147,8 +146,8 @@ extern "C" void png_ignore_warning(png_structp, png_const_charp) {}
 // any error.
 bool decode_with_libpng(PngReadState& state, std::vector<std::uint8_t>& rgba,
                         std::vector<png_bytep>& rows, int& width, int& height) {
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, png_keep_error,
-                                             png_ignore_warning);
+    png_structp png =
+        png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, png_keep_error, png_ignore_warning);
     if (!png) {
         std::snprintf(state.message, sizeof state.message, "out of memory");
         return false;

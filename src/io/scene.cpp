@@ -1,7 +1,7 @@
 #include "io/scene.hpp"
 
-#include "io/files.hpp"
 #include "io/field_reader.hpp"
+#include "io/files.hpp"
 #include "io/input_error.hpp"
 #include "io/key_walk.hpp"
 #include "io/keys/effect_registry.hpp"
@@ -201,9 +201,8 @@ void read_effects(FieldReader& r, Scene& s) {
 
 void check_render_range(const FieldReader& r, const Scene& s) {
     if (const auto& range = s.render.range; range && !((*range)[0] < (*range)[1]))
-        r.fail("render.range",
-               fmt::format("the low end must be below the high end, got [{}, {}]", (*range)[0],
-                           (*range)[1]));
+        r.fail("render.range", fmt::format("the low end must be below the high end, got [{}, {}]",
+                                           (*range)[0], (*range)[1]));
 }
 
 // output.name stays inside out/, and run.json records it: UTF-8 or a type_error.
@@ -306,9 +305,8 @@ double check_support(const FieldReader& r, const Scene& s) {
 // in floating point, so that absurd requests are caught before any cast or
 // allocation; each axis on its own, so that 0 x infinity (NaN) cannot slip
 // past the limits.
-std::array<double, 3> check_lattice_box(const FieldReader& r, const Scene& s,
-                                        const std::string& p, const char* what, const Vec3& min,
-                                        const Vec3& max) {
+std::array<double, 3> check_lattice_box(const FieldReader& r, const Scene& s, const std::string& p,
+                                        const char* what, const Vec3& min, const Vec3& max) {
     std::array<double, 3> along{1, 1, 1};
     for (int a = 0; a < s.dimension; ++a) {
         if (!(min[a] < max[a]))
@@ -316,9 +314,8 @@ std::array<double, 3> check_lattice_box(const FieldReader& r, const Scene& s,
                                   "xyz"[a], min[a], max[a]));
         const double tolerance = 1e-9 * (s.domain.max[a] - s.domain.min[a]);
         if (min[a] < s.domain.min[a] - tolerance || max[a] > s.domain.max[a] + tolerance)
-            r.fail(p, fmt::format("the {} [{}, {}] on axis {} is outside the domain [{}, {}]",
-                                  what, min[a], max[a], "xyz"[a], s.domain.min[a],
-                                  s.domain.max[a]));
+            r.fail(p, fmt::format("the {} [{}, {}] on axis {} is outside the domain [{}, {}]", what,
+                                  min[a], max[a], "xyz"[a], s.domain.min[a], s.domain.max[a]));
         along[a] = std::floor((max[a] - min[a]) / s.fluid.spacing + 1e-9);
         if (!(along[a] >= 1))
             r.fail(p, fmt::format("the {} is thinner than one spacing ({} m) on axis {} and "
@@ -615,9 +612,10 @@ Derived derive(const Scene& s) {
     // auto: single in 2D where it can run. In 3D the 27 cells around a
     // cell hold six candidates per neighbour, and single measured even with
     // double for 27% more memory (docs/solvers.md, "Single precision").
-    d.precision = s.solver.precision                                     ? *s.solver.precision
-                  : dim == 2 && single_precision_obstacle(s, d.kernel).empty() ? Precision::single
-                                                                   : Precision::double_precision;
+    d.precision = s.solver.precision ? *s.solver.precision
+                  : dim == 2 && single_precision_obstacle(s, d.kernel).empty()
+                      ? Precision::single
+                      : Precision::double_precision;
     d.walls = s.solver.walls.value_or(solver_capabilities(s.solver.name).wall_particles
                                           ? WallModel::particles
                                           : WallModel::reflect);
@@ -678,11 +676,11 @@ Derived derive(const Scene& s) {
         if (s.effects.gravity)
             for (int a = 0; a < dim; ++a)
                 g += s.effects.gravity->acceleration[a] * s.effects.gravity->acceleration[a];
-        d.dt = stable_time_step(
-            time_step_settings(s),
-            {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density,
-             s.effects.viscosity ? s.effects.viscosity->mu : 0.0},
-            {.carries_sound = solver_capabilities(s.solver.name).carries_sound}, {0, std::sqrt(g)});
+        d.dt = stable_time_step(time_step_settings(s),
+                                {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density,
+                                 s.effects.viscosity ? s.effects.viscosity->mu : 0.0},
+                                {.carries_sound = solver_capabilities(s.solver.name).carries_sound},
+                                {0, std::sqrt(g)});
     }
     for (const auto& b : s.fluid.blocks) {
         std::size_t count = 1;

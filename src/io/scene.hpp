@@ -102,7 +102,7 @@ struct Scene {
     struct Watchdog {
         int retries = WatchdogSettings{}.retries; // halvings of a failed step before exit 3
         double max_density_ratio = WatchdogSettings{}.max_density_ratio; // collapse: rho / rho0
-        double max_displacement = WatchdogSettings{}.max_displacement; // support radii per step
+        double max_displacement = WatchdogSettings{}.max_displacement;   // support radii per step
         std::optional<double> max_speed; // m/s; default from the scene (Derived::max_speed)
     } watchdog;
 
@@ -118,9 +118,9 @@ struct Scene {
         std::optional<ArtificialViscositySettings> artificial_viscosity;
         std::optional<XsphSettings> xsph;
         std::optional<SurfaceTensionSettings> surface_tension;
-        std::vector<SceneObstacle> obstacles;            // static solids; none by default
-        std::vector<SceneEmitter> emitters;              // fluid sources; none by default
-        std::vector<ScenePaddle> paddles;                // moving boxes; none by default
+        std::vector<SceneObstacle> obstacles; // static solids; none by default
+        std::vector<SceneEmitter> emitters;   // fluid sources; none by default
+        std::vector<ScenePaddle> paddles;     // moving boxes; none by default
     } effects;
 
     struct Render {
@@ -151,11 +151,11 @@ struct Derived {
     double mass = 0; // kg
     double dt = 0;   // s, the fixed step, or the adaptive rule's first step
     bool fixed_dt = false;
-    KernelKind kernel = KernelKind::seed;            // solver.kernel resolved
-    WallModel walls = WallModel::reflect;            // solver.walls resolved
+    KernelKind kernel = KernelKind::seed;              // solver.kernel resolved
+    WallModel walls = WallModel::reflect;              // solver.walls resolved
     Precision precision = Precision::double_precision; // solver.precision resolved
-    double sound_speed = 0; // m/s, sqrt(K / rho0)
-    double max_speed = 0;   // m/s, watchdog.max_speed resolved
+    double sound_speed = 0;                            // m/s, sqrt(K / rho0)
+    double max_speed = 0;                              // m/s, watchdog.max_speed resolved
     // Lattice sites of the blocks; the sites in or beside obstacles are left
     // empty at setup (make_initial_state).
     std::size_t particles = 0;

@@ -3,13 +3,13 @@
 #include "io/input_error.hpp"
 #include "io/keys/effect_registry.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
-#include "sph/sources/emitter.hpp"
 #include "sph/effects/gravity.hpp"
 #include "sph/effects/laminar_viscosity.hpp"
 #include "sph/effects/seed_viscosity.hpp"
 #include "sph/effects/surface_tension.hpp"
 #include "sph/effects/xsph.hpp"
 #include "sph/lattice.hpp"
+#include "sph/sources/emitter.hpp"
 
 #include <fmt/format.h>
 
@@ -174,10 +174,10 @@ SourceList<D> make_sources(const Scene& scene) {
 template <int D>
 Simulation<D> make_simulation(const Scene& scene, const Derived& derived) {
     const Params<D> params = make_params<D>(scene, derived);
-    return Simulation<D>(
-        params, make_initial_state<D>(scene, derived), make_solver<D>(scene.solver.name, params),
-        make_neighbour_search<D>(scene.solver.neighbour_search), make_effects<D>(scene),
-        make_sources<D>(scene));
+    return Simulation<D>(params, make_initial_state<D>(scene, derived),
+                         make_solver<D>(scene.solver.name, params),
+                         make_neighbour_search<D>(scene.solver.neighbour_search),
+                         make_effects<D>(scene), make_sources<D>(scene));
 }
 
 template std::vector<Paddle<2>> make_paddles<2>(const Scene&);

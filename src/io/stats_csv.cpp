@@ -11,7 +11,8 @@ namespace sph {
 
 StatsCsv::StatsCsv(const std::filesystem::path& path) : path_(path) {
     // O_NOFOLLOW: never written through a link (docs/contract.md).
-    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
+    const int fd =
+        ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
     file_ = fd >= 0 ? ::fdopen(fd, "w") : nullptr;
     if (!file_ && fd >= 0)
         ::close(fd);

@@ -61,9 +61,7 @@ struct Poly6 {
     Real W_r2(Real r2) const { return r2 < h2 ? norm * detail::cube(h2 - r2) : 0; }
     Real W(Real r) const { return W_r2(r * r); }
     Real dW(Real r) const { return r * dW_over_r(r); }
-    Real dW_over_r(Real r) const {
-        return r < h ? -6 * norm * (h2 - r * r) * (h2 - r * r) : 0;
-    }
+    Real dW_over_r(Real r) const { return r < h ? -6 * norm * (h2 - r * r) * (h2 - r * r) : 0; }
     Vec<D> grad(const Vec<D>& x, Real r) const { return dW_over_r(r) * x; }
 };
 

@@ -2,9 +2,9 @@
 // Fixed parameters of one simulation, derived once from the scene and passed as
 // `const Params&` to every stage. Changing quantities live in State.
 
-#include "sph/kernels.hpp"
 #include "sph/boundaries/obstacles.hpp"
 #include "sph/boundaries/paddles.hpp"
+#include "sph/kernels.hpp"
 #include "sph/vec.hpp"
 
 #include <cmath>
@@ -56,12 +56,12 @@ struct WatchdogSettings {
 
 template <int D>
 struct Params {
-    Real mass = 0;                 // kg, of every particle
-    Real h = 0;                    // m, support radius of the kernels
-    Real spacing = 0;              // m, rest distance between particles
-    Real rest_density = 0;         // kg/m^3
-    Real bulk_modulus = 0;         // Pa, K in p = K (rho - rho0)
-    Box<D> domain;                 // m, the walls
+    Real mass = 0;         // kg, of every particle
+    Real h = 0;            // m, support radius of the kernels
+    Real spacing = 0;      // m, rest distance between particles
+    Real rest_density = 0; // kg/m^3
+    Real bulk_modulus = 0; // Pa, K in p = K (rho - rho0)
+    Box<D> domain;         // m, the walls
     // Static solids inside the domain, made of boundary particles (obstacles.hpp).
     std::vector<Obstacle<D>> obstacles;
     // Boxes that move with a prescribed motion, made of boundary particles (paddles.hpp).

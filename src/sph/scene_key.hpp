@@ -45,10 +45,10 @@ struct Key {
     KeyField<S> field{};
     std::string unit{};
     std::string doc{};
-    Bound bound = Bound::any;         // number keys
-    int min = 0, max = 0;             // integer keys (and each number of an image size)
+    Bound bound = Bound::any;           // number keys
+    int min = 0, max = 0;               // integer keys (and each number of an image size)
     std::vector<std::string> choices{}; // choice and enum keys: the values allowed
-    std::string absent{};             // what an absent key means, where no value says it
+    std::string absent{};               // what an absent key means, where no value says it
     VectorSize size = VectorSize::dimension;
     bool nullable = false; // a value that may be null (absent): an effect that is off
 };
@@ -71,7 +71,9 @@ constexpr EnumField<typename MemberOf<decltype(M)>::Struct> enum_field() {
     using S = typename MemberOf<decltype(M)>::Struct;
     using E = typename MemberOf<decltype(M)>::Type;
     return {[](const S& s) { return static_cast<int>(s.*M); },
-            [](S& s, int i) { s.*M = static_cast<E>(i); }};
+            [](S& s, int i) {
+                s.*M = static_cast<E>(i);
+            }};
 }
 
 // The EnumField of member M, a std::optional of such an enum whose first

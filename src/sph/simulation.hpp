@@ -1,9 +1,9 @@
 #pragma once
 // One simulation: fixed parameters, the particle state, and the parts a step is
 // built from (solver, neighbour search, effects, boundaries and their
-// particles, particle sources), all chosen once from the scene. Time advances by the adaptive step (time_step.hpp) or
-// a fixed one; callers take frames at times they choose, which the steps
-// land on exactly.
+// particles, particle sources), all chosen once from the scene. Time advances by the adaptive step
+// (time_step.hpp) or a fixed one; callers take frames at times they choose, which the steps land on
+// exactly.
 
 #include "sph/boundaries/boundary.hpp"
 #include "sph/snapshot.hpp"
@@ -108,8 +108,8 @@ class Simulation {
     NeighbourList neighbours_;
     NeighbourList boundary_neighbours_;
     StepCounters counters_;
-    State<D> saved_; // the state before the step, for the watchdog's retries
-    Real start_density_ratio_ = 0;        // densest particle at the start, / rho0
+    State<D> saved_;                     // the state before the step, for the watchdog's retries
+    Real start_density_ratio_ = 0;       // densest particle at the start, / rho0
     std::uint32_t start_densest_id_ = 0; // its id
     // The spatial sort: a grid of its own when the search keeps no cell
     // order (hash, all_pairs), made on first use; scratch for the permutation.

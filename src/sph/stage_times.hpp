@@ -48,10 +48,14 @@ enum class Stage : std::uint8_t {
 
 // The names the stage table and run.json's `stages` print, by Stage.
 inline constexpr std::array<std::string_view, std::size_t(Stage::count)> stage_names{
-    "neighbour search", "boundary neighbours", "density",  "pressure",
-    "divergence solve", "pressure solve",      "integration", "time step",
-    "watchdog",         "reorder",             "frame statistics", "render",
-    "readback",         "encode wait",         "output",   "encode"};
+    "neighbour search", "boundary neighbours",
+    "density",          "pressure",
+    "divergence solve", "pressure solve",
+    "integration",      "time step",
+    "watchdog",         "reorder",
+    "frame statistics", "render",
+    "readback",         "encode wait",
+    "output",           "encode"};
 
 constexpr std::string_view stage_name(Stage stage) {
     return stage_names[std::size_t(stage)];

@@ -4,8 +4,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <glm/glm.hpp>
+#include <limits>
 
 namespace sph {
 

@@ -92,8 +92,9 @@ int main(int argc, char** argv) {
     fmt::print("effects benchmark: built-in 2D dam break, wcsph, spacing {} m, dt 1e-4 s, {} "
                "steps, {} threads\n\n",
                spacing, steps, omp_get_max_threads());
-    fmt::print("| configuration | particles | ms / step | ns / particle-step | added stage's growth, "
-               "ns / particle-step |\n|---|---|---|---|---|\n");
+    fmt::print(
+        "| configuration | particles | ms / step | ns / particle-step | added stage's growth, "
+        "ns / particle-step |\n|---|---|---|---|---|\n");
     if (csv)
         fmt::print(csv, "configuration,particles,ms_per_step,ns_per_particle_step,added_stage,"
                         "added_ns_per_particle_step\n");

@@ -192,7 +192,9 @@ int main(int argc, char** argv) {
         "search,dimension,particles,layout,threads,radius_dp,repetitions,ms,build_ms,query_ms,"
         "pairs,mpairs_per_s\n",
         date, std::thread::hardware_concurrency(), cpu_model(), __GNUC__, __GNUC_MINOR__,
-        quick ? "--quick" : peer_case_only ? "--compactnsearch" : "full");
+        quick            ? "--quick"
+        : peer_case_only ? "--compactnsearch"
+                         : "full");
     fmt::print("{}", header);
 
     const int before = omp_get_max_threads();
@@ -200,14 +202,14 @@ int main(int argc, char** argv) {
     bool agree = true;
     // 3D: ~10k, ~100k, 125k (CompactNSearch's case) and 1M particles; 2D: ~10k, ~100k, 1M.
     // --compactnsearch: the 125k 3D case alone, the one compared with the peer.
-    const std::vector<std::size_t> sides3 =
-        quick            ? std::vector<std::size_t>{8}
-        : peer_case_only ? std::vector<std::size_t>{50}
-                         : std::vector<std::size_t>{22, 46, 50, 100};
-    const std::vector<std::size_t> sides2 =
-        quick            ? std::vector<std::size_t>{24}
-        : peer_case_only ? std::vector<std::size_t>{}
-                         : std::vector<std::size_t>{100, 316, 1000};
+    const std::vector<std::size_t> sides3 = quick ? std::vector<std::size_t>{8}
+                                            : peer_case_only
+                                                ? std::vector<std::size_t>{50}
+                                                : std::vector<std::size_t>{22, 46, 50, 100};
+    const std::vector<std::size_t> sides2 = quick ? std::vector<std::size_t>{24}
+                                            : peer_case_only
+                                                ? std::vector<std::size_t>{}
+                                                : std::vector<std::size_t>{100, 316, 1000};
     for (std::size_t side : sides3)
         agree = run_case<3>(side, 2.0, quick, rows, stdout) && agree;
     for (std::size_t side : sides2)

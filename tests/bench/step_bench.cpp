@@ -427,8 +427,8 @@ int main(int argc, char** argv) {
                                                                            : "NO";
             fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {:.2f} | {:.3f} | {:.0f} | "
                        "{:.1f} | {:.0f}, {:.0f} | {:.0f} | {} | {} |\n",
-                       label, c.solver, c.dimension, search_label, r.particles, r.boundary,
-                       threads, r.steps, r.wall_s, r.rate() * 1e-6, 1e9 / r.rate(), r.neighbours,
+                       label, c.solver, c.dimension, search_label, r.particles, r.boundary, threads,
+                       r.steps, r.wall_s, r.rate() * 1e-6, 1e9 / r.rate(), r.neighbours,
                        r.array_bytes, r.rss_bytes, r.peak_rss / 1048576, same_text,
                        stage_summary(r, 4));
             if (c.dsph)

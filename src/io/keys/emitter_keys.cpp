@@ -1,5 +1,5 @@
-// The effects.emitters family's keys, read, checked and written by hand: a list of boxes with a time window.
-// (Their declarations move next to the family once it has its own folder.)
+// The effects.emitters family's keys, read, checked and written by hand: a list of boxes with a
+// time window. (Their declarations move next to the family once it has its own folder.)
 #include "io/keys/scene_keys.hpp"
 
 namespace sph {
@@ -19,8 +19,8 @@ void read_emitters(FieldReader& r, int dim, std::vector<SceneEmitter>& emitters)
                               "Velocity of the emitted particles (not zero).");
         e.start = r.number(p + ".start", fallback.start, "s", "When the emitter starts.",
                            Bound::non_negative);
-        e.end = r.number(p + ".end", fallback.end, "s", "When the emitter stops.",
-                         Bound::non_negative);
+        e.end =
+            r.number(p + ".end", fallback.end, "s", "When the emitter stops.", Bound::non_negative);
         e.radius = r.optional_number(
             p + ".radius", "m", "the whole box",
             "A disc inlet (a round pipe in 3D): only the box's lattice sites within this "
@@ -39,9 +39,10 @@ void read_emitters(FieldReader& r, int dim, std::vector<SceneEmitter>& emitters)
     }
 }
 
-
 json write_emitters(const std::vector<SceneEmitter>& emitters, int dim) {
-    auto vec = [dim](const Vec3& v) { return std::vector<double>(v.begin(), v.begin() + dim); };
+    auto vec = [dim](const Vec3& v) {
+        return std::vector<double>(v.begin(), v.begin() + dim);
+    };
     json out = json::array();
     for (const auto& e : emitters) {
         json emitter = {{"min", vec(e.min)},

@@ -1,7 +1,6 @@
 // The effects.obstacles family's keys, read, checked and written by hand: a list of one-of shapes.
 // (Their declarations move next to the family once it has its own folder.)
 #include "io/keys/scene_keys.hpp"
-
 #include "io/obj_mesh.hpp"
 #include "io/scene_paths.hpp"
 
@@ -90,21 +89,21 @@ void read_obstacles(FieldReader& r, int dim, const std::string& file,
     }
 }
 
-
 json write_obstacles(const std::vector<SceneObstacle>& obstacles, int dim) {
-    auto vec = [dim](const Vec3& v) { return std::vector<double>(v.begin(), v.begin() + dim); };
+    auto vec = [dim](const Vec3& v) {
+        return std::vector<double>(v.begin(), v.begin() + dim);
+    };
     json out = json::array();
     for (const auto& o : obstacles)
-        out.push_back(
-            o.shape == ObstacleShape::box
-                ? json{{"box", {{"min", vec(o.min)}, {"max", vec(o.max)}}}}
-            : o.shape == ObstacleShape::sphere
-                ? json{{"sphere", {{"centre", vec(o.centre)}, {"radius", o.radius}}}}
-                // The file as the scene names it, relative to the scene's folder.
-                : json{{"mesh",
-                        {{"file", o.mesh_file},
-                         {"scale", o.mesh_scale},
-                         {"offset", vec(o.mesh_offset)}}}});
+        out.push_back(o.shape == ObstacleShape::box
+                          ? json{{"box", {{"min", vec(o.min)}, {"max", vec(o.max)}}}}
+                      : o.shape == ObstacleShape::sphere
+                          ? json{{"sphere", {{"centre", vec(o.centre)}, {"radius", o.radius}}}}
+                          // The file as the scene names it, relative to the scene's folder.
+                          : json{{"mesh",
+                                  {{"file", o.mesh_file},
+                                   {"scale", o.mesh_scale},
+                                   {"offset", vec(o.mesh_offset)}}}});
     return out;
 }
 

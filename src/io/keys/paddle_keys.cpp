@@ -1,5 +1,5 @@
-// The effects.paddles family's keys, read, checked and written by hand: a list of boxes, each with the keys of its motion.
-// (Their declarations move next to the family once it has its own folder.)
+// The effects.paddles family's keys, read, checked and written by hand: a list of boxes, each with
+// the keys of its motion. (Their declarations move next to the family once it has its own folder.)
 #include "io/keys/scene_keys.hpp"
 
 namespace sph {
@@ -55,9 +55,10 @@ void read_paddles(FieldReader& r, int dim, std::vector<ScenePaddle>& paddles) {
     }
 }
 
-
 json write_paddles(const std::vector<ScenePaddle>& paddles, int dim) {
-    auto vec = [dim](const Vec3& v) { return std::vector<double>(v.begin(), v.begin() + dim); };
+    auto vec = [dim](const Vec3& v) {
+        return std::vector<double>(v.begin(), v.begin() + dim);
+    };
     json out = json::array();
     for (const auto& o : paddles) {
         json paddle = {{"min", vec(o.min)}, {"max", vec(o.max)}, {"motion", o.motion}};

@@ -108,7 +108,7 @@ class BoundaryParticles {
     std::vector<Vec<D>> positions_; // static ones sorted by cell, then moving ones
     std::vector<Real> volumes_;     // m^3 (m^2 in 2D)
     Real h_ = 0;
-    Grid grid_; // the static particles, built once
+    Grid grid_;                      // the static particles, built once
     std::vector<Vec<D>> velocities_; // m/s, 0 for the static ones
     // Moving particles: where they are at rest, their group, and their own
     // grid, its entries indices into positions_.

@@ -8,7 +8,7 @@ namespace sph {
 // The scene's `effects.gravity`: the acceleration itself, not an object.
 struct GravitySettings {
     static constexpr const char* key = "gravity"; // in the scene's `effects`
-    Vec3 acceleration{0, -9.81, 0}; // m/s^2
+    Vec3 acceleration{0, -9.81, 0};               // m/s^2
     EffectCapabilities capabilities() const { return {}; }
     // How the scene's checks name it.
     std::string label() const { return "effects.gravity"; }

@@ -94,7 +94,9 @@ class SurfaceTension final : public Effect<D> {
         }
     }
 
-    std::size_t bytes() const override { return normals_.capacity() * sizeof(Vec<D>); }
+    std::size_t bytes() const override {
+        return normals_.capacity() * sizeof(Vec<D>);
+    }
 
   private:
     template <class Kernel>

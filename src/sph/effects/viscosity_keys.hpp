@@ -18,14 +18,16 @@ inline constexpr std::array<const char*, 2> viscosity_model_names{"seed", "morri
 
 struct ViscositySettings {
     static constexpr const char* key = "viscosity"; // in the scene's `effects`
-    ViscosityModel model = ViscosityModel::morris; // the scene's default: the solver's
-    double mu = 0;     // Pa.s; the scene's default: material.viscosity
+    ViscosityModel model = ViscosityModel::morris;  // the scene's default: the solver's
+    double mu = 0;                                  // Pa.s; the scene's default: material.viscosity
     EffectCapabilities capabilities() const {
         return {.reads_neighbour_lists = model != ViscosityModel::morris};
     }
     // How the scene's checks name it.
-    std::string label() const { return std::string("effects.viscosity model ") +
-               viscosity_model_names[static_cast<std::size_t>(model)]; }
+    std::string label() const {
+        return std::string("effects.viscosity model ") +
+               viscosity_model_names[static_cast<std::size_t>(model)];
+    }
 };
 
 inline const KeyTable<ViscositySettings>& viscosity_keys() {

@@ -56,7 +56,8 @@ class Xsph final : public Effect<D> {
 #pragma omp parallel for schedule(dynamic, 256)
             for (std::size_t i = 0; i < n; ++i) {
                 const Vec<D> a = sum_over_neighbours(in.neighbours, i, [&](std::uint32_t j) {
-                    const Real r = std::sqrt(squared_length<D>(state.position[i] - state.position[j]));
+                    const Real r =
+                        std::sqrt(squared_length<D>(state.position[i] - state.position[j]));
                     return (kernel.W(r) / (state.density[i] + state.density[j])) *
                            (state.velocity[j] - state.velocity[i]);
                 });

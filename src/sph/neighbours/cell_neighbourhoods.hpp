@@ -48,8 +48,8 @@ class CellNeighbourhoods {
     };
     std::size_t cell_count() const { return grid_.cell_count(); }
     Cell cell(std::size_t c) const {
-        return {grid_.cell_begin(c), fluid_end_[c], {runs_[c].data(), run_count_[c]},
-                candidates_[c]};
+        return {
+            grid_.cell_begin(c), fluid_end_[c], {runs_[c].data(), run_count_[c]}, candidates_[c]};
     }
     // The most candidates of any cell with fluid: the size of a pass's buffers.
     std::size_t max_candidates() const { return max_candidates_; }

@@ -36,8 +36,7 @@ auto sum_over_pairs(const NeighbourList& list, std::size_t i, Term&& term_argume
     // 0. A row of 20 would otherwise end in a scalar remainder of 4 that
     // costs as much as the 16 before it. Arrays kept per pair need the same
     // padding.
-    const std::size_t padded_end =
-        begin + (end - begin + simd_lanes - 1) / simd_lanes * simd_lanes;
+    const std::size_t padded_end = begin + (end - begin + simd_lanes - 1) / simd_lanes * simd_lanes;
     if constexpr (std::is_same_v<T, Real>) {
         Real s = 0;
 #pragma omp simd reduction(+ : s)

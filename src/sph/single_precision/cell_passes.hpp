@@ -68,8 +68,8 @@ class CellPasses {
 #pragma omp parallel for schedule(static)
         for (std::size_t k = 0; k < total; ++k) {
             const std::uint32_t j = order[k];
-            sorted_.mass[k] = float(j < n ? params.mass
-                                          : params.rest_density * boundary->volumes()[j - n]);
+            sorted_.mass[k] =
+                float(j < n ? params.mass : params.rest_density * boundary->volumes()[j - n]);
         }
         for_each_cell([&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
             gather(cell, sorted_.mass, b.mass, 0.f);
@@ -151,22 +151,22 @@ class CellPasses {
                     const float pt_i = sorted_.pressure_term[k], rho_i = sorted_.density[k];
                     const float viscous_scale = laminar ? morris.two_mu / rho_i : 0.f;
                     const FVec a_i = sum_candidates<FVec>(l.padded, [=](std::size_t m) {
-                            const FVec x_ij = x_i - l.position(m);
-                            const FVec v_ij = v_i - l.velocity(m);
-                            const float r2 = glm::dot(x_ij, x_ij);
-                            const float v_dot_x = glm::dot(v_ij, x_ij);
-                            const float r = std::sqrt(r2);
-                            const float g = kernel.dW_over_r(r);
-                            const bool wall = l.wall[m] > 0;
-                            float factor = pt_i + (wall ? pt_i : l.pressure_term[m]);
-                            if constexpr (artificial)
-                                factor += Pi(v_dot_x, rho_i + (wall ? rho_i : l.density[m]), r2);
-                            const float pressure = -l.mass[m] * factor * g;
-                            float viscous = 0;
-                            if constexpr (laminar)
-                                viscous = viscous_scale * morris(l.volume[m], r2 * g, r2);
-                            return pressure * x_ij + viscous * v_ij;
-                        });
+                        const FVec x_ij = x_i - l.position(m);
+                        const FVec v_ij = v_i - l.velocity(m);
+                        const float r2 = glm::dot(x_ij, x_ij);
+                        const float v_dot_x = glm::dot(v_ij, x_ij);
+                        const float r = std::sqrt(r2);
+                        const float g = kernel.dW_over_r(r);
+                        const bool wall = l.wall[m] > 0;
+                        float factor = pt_i + (wall ? pt_i : l.pressure_term[m]);
+                        if constexpr (artificial)
+                            factor += Pi(v_dot_x, rho_i + (wall ? rho_i : l.density[m]), r2);
+                        const float pressure = -l.mass[m] * factor * g;
+                        float viscous = 0;
+                        if constexpr (laminar)
+                            viscous = viscous_scale * morris(l.volume[m], r2 * g, r2);
+                        return pressure * x_ij + viscous * v_ij;
+                    });
                     state.acceleration[order[k]] = Vec<D>(a_i);
                 }
             });
@@ -212,18 +212,11 @@ class CellPasses {
         std::size_t padded = 0;
 
         Lanes lanes() const {
-            return {x[0].data(),
-                    x[1].data(),
-                    D == 3 ? x[D - 1].data() : nullptr,
-                    velocity[0].data(),
-                    velocity[1].data(),
-                    D == 3 ? velocity[D - 1].data() : nullptr,
-                    mass.data(),
-                    density.data(),
-                    pressure_term.data(),
-                    volume.data(),
-                    wall.data(),
-                    padded};
+            return {
+                x[0].data(),        x[1].data(),        D == 3 ? x[D - 1].data() : nullptr,
+                velocity[0].data(), velocity[1].data(), D == 3 ? velocity[D - 1].data() : nullptr,
+                mass.data(),        density.data(),     pressure_term.data(),
+                volume.data(),      wall.data(),        padded};
         }
     };
 
@@ -287,8 +280,8 @@ class CellPasses {
     }
     // Copies one field of the cell's candidates into `out`, then `padding`
     // up to the padded end.
-    void gather(const Cell& cell, const std::vector<float>& field,
-                std::vector<float>& out, float padding) const {
+    void gather(const Cell& cell, const std::vector<float>& field, std::vector<float>& out,
+                float padding) const {
         std::size_t m = 0;
         for (const auto& run : cell.runs) {
             // As in gather_positions: whole vectors, past the run's end.

@@ -71,9 +71,8 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
         }
         const Vec<D> sum =
             sum_over_pairs(pairs, i, [&](std::size_t e, std::uint32_t) { return gradient[e]; });
-        const Real sum_squares = sum_over_pairs(pairs, i, [&](std::size_t e, std::uint32_t) {
-            return squared_length<D>(gradient[e]);
-        });
+        const Real sum_squares = sum_over_pairs(
+            pairs, i, [&](std::size_t e, std::uint32_t) { return squared_length<D>(gradient[e]); });
         Vec<D> walls_sum(0);
         if (context.boundary) {
             const auto xb = context.boundary->positions();
@@ -88,9 +87,8 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
                 wall_gradient[e] =
                     params.rest_density * volume[b] * boundary_gradient(kernel, x_ib, r);
             }
-            walls_sum = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t) {
-                return wall_gradient[e];
-            });
+            walls_sum = sum_over_pairs(
+                walls, i, [&](std::size_t e, std::uint32_t) { return wall_gradient[e]; });
             if (moving)
                 wall_motion_[i] = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
                     return glm::dot(wall_gradient[e], wall_velocity[b]);
@@ -270,8 +268,8 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
         const std::size_t n = state.size();
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i)
-            state.pressure[i] = state.density[i] * state.density[i] *
-                                (stiffness_sum_[i] + divergence_sum_[i]) / dt;
+            state.pressure[i] =
+                state.density[i] * state.density[i] * (stiffness_sum_[i] + divergence_sum_[i]) / dt;
     }
     previous_dt_ = dt;
     solve_timed.reset();

@@ -103,8 +103,7 @@ Vec<D> seed_pair_acceleration(const Params<D>& params, Real mu, const State<D>& 
                               std::size_t i, std::size_t j) {
     const SeedKernel<D> kernel(params.h);
     return SeedPressureTerm<D, SeedKernel<D>>{params, kernel}(state, i, j) +
-           seed_viscous_acceleration(params, ViscosityLaplacian<D>(params.h), mu,
-                                     state, i, j);
+           seed_viscous_acceleration(params, ViscosityLaplacian<D>(params.h), mu, state, i, j);
 }
 
 template <int D>
@@ -147,10 +146,8 @@ void compute_seed_interaction(const Params<D>& params, Real mu, const NeighbourL
     compute_seed_pressure(params, SeedKernel<D>(params.h), neighbours, &viscosity, state);
 }
 
-template void compute_seed_interaction<2>(const Params<2>&, Real, const NeighbourList&,
-                                           State<2>&);
-template void compute_seed_interaction<3>(const Params<3>&, Real, const NeighbourList&,
-                                           State<3>&);
+template void compute_seed_interaction<2>(const Params<2>&, Real, const NeighbourList&, State<2>&);
+template void compute_seed_interaction<3>(const Params<3>&, Real, const NeighbourList&, State<3>&);
 template Vec<2> seed_pair_force<2>(const Params<2>&, Real, const State<2>&, std::size_t,
                                    std::size_t);
 template Vec<3> seed_pair_force<3>(const Params<3>&, Real, const State<3>&, std::size_t,

@@ -30,10 +30,10 @@ struct StepContext {
     NeighbourList& boundary_neighbours;   // fluid -> boundary particles
     const EffectList<D>& effects;
     const BoundaryList<D>& boundaries; // walls, obstacles, paddles (boundary_set.hpp)
-    StageTimes* stages = nullptr; // where stage times go; null: not timed
-    Real dt = 0;                  // s, the step being taken (XSPH reads it)
-    Real start_time = 0;          // s, when the step starts (paddles move with it)
-    bool output_pressure = true;  // an output reads the pressure field (FrameFields)
+    StageTimes* stages = nullptr;      // where stage times go; null: not timed
+    Real dt = 0;                       // s, the step being taken (XSPH reads it)
+    Real start_time = 0;               // s, when the step starts (paddles move with it)
+    bool output_pressure = true;       // an output reads the pressure field (FrameFields)
     // The boundary set again, writable, when it holds paddles; null when
     // nothing in it moves.
     BoundaryParticles<D>* moving_boundary = nullptr;
@@ -124,11 +124,11 @@ class Solver {
 // declared in its own file; the scene's checks and defaults ask these
 // rather than the solver's name.
 struct SolverCapabilities {
-    std::string_view name;          // solver.name
-    bool carries_sound = true;      // weakly compressible: the step is bounded by the sound speed
-    bool wall_particles = true;     // boundary particles: walls, obstacles, paddles
-    bool supports_verlet = true;    // solver.integrator verlet
-    bool single_precision = false;  // float passes over grid cells (solver.precision single)
+    std::string_view name;         // solver.name
+    bool carries_sound = true;     // weakly compressible: the step is bounded by the sound speed
+    bool wall_particles = true;    // boundary particles: walls, obstacles, paddles
+    bool supports_verlet = true;   // solver.integrator verlet
+    bool single_precision = false; // float passes over grid cells (solver.precision single)
     KernelKind default_kernel = KernelKind::cubic_spline; // solver.kernel auto
     // solver.artificial_viscosity applies without an effects.artificial_viscosity key.
     bool default_artificial_viscosity = false;

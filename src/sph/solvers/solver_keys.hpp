@@ -13,16 +13,16 @@
 namespace sph {
 
 struct SolverSettings {
-    std::string name = "seed";                   // seed | wcsph | dfsph
-    std::optional<KernelKind> kernel;            // none: auto, the solver's default
-    std::optional<double> dt;                    // s; fixed step; default adaptive
-    double cfl = TimeStepSettings{}.cfl;         // Courant number of the adaptive step
-    double dt_min = TimeStepSettings{}.dt_min;   // s
-    double dt_max = TimeStepSettings{}.dt_max;   // s
+    std::string name = "seed";                 // seed | wcsph | dfsph
+    std::optional<KernelKind> kernel;          // none: auto, the solver's default
+    std::optional<double> dt;                  // s; fixed step; default adaptive
+    double cfl = TimeStepSettings{}.cfl;       // Courant number of the adaptive step
+    double dt_min = TimeStepSettings{}.dt_min; // s
+    double dt_max = TimeStepSettings{}.dt_max; // s
     Integrator integrator = Integrator::symplectic_euler;
-    std::optional<WallModel> walls;              // none: auto, the solver's default
-    double artificial_viscosity = 0.02;          // alpha (wcsph; see effects)
-    double tolerance = PressureSolveSettings{}.tolerance;                       // % (dfsph)
+    std::optional<WallModel> walls;                       // none: auto, the solver's default
+    double artificial_viscosity = 0.02;                   // alpha (wcsph; see effects)
+    double tolerance = PressureSolveSettings{}.tolerance; // % (dfsph)
     double divergence_tolerance = PressureSolveSettings{}.divergence_tolerance; // % per step
     int min_iterations = PressureSolveSettings{}.min_iterations;                // dfsph
     int max_iterations = PressureSolveSettings{}.max_iterations;                // dfsph

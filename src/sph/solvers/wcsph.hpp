@@ -14,9 +14,8 @@
 namespace sph {
 
 // The single-precision passes are wcsph's; it keeps solver.artificial_viscosity.
-inline constexpr SolverCapabilities wcsph_capabilities{.name = "wcsph",
-                                                       .single_precision = true,
-                                                       .default_artificial_viscosity = true};
+inline constexpr SolverCapabilities wcsph_capabilities{
+    .name = "wcsph", .single_precision = true, .default_artificial_viscosity = true};
 
 template <int D>
 class WcsphSolver final : public ExplicitSolver<D> {

@@ -6,6 +6,7 @@
 #include "io/input_error.hpp"
 #include "io/obj_mesh.hpp"
 #include "io/png_io.hpp"
+#include "io/scene.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
 
@@ -13,6 +14,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
+#include <optional>
 #include <string>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -209,4 +211,77 @@ TEST_CASE("inputs: an OBJ mesh that is a device, has a bad vertex or a huge face
     } catch (const sph::InputError& e) {
         CHECK(contains(e.problem, "cannot read the mesh file: not a regular file"));
     }
+}
+
+namespace {
+
+// The InputError parse_scene throws for `text` with `overrides`, or none.
+std::optional<sph::InputError> scene_error(const std::string& text,
+                                           const std::vector<sph::Override>& overrides = {}) {
+    try {
+        sph::parse_scene(text, "scene.json", overrides);
+        return std::nullopt;
+    } catch (const sph::InputError& e) {
+        return e;
+    }
+}
+
+} // namespace
+
+TEST_CASE("inputs: a key given twice in one object is refused, naming it", "[contract][inputs]") {
+    // nlohmann keeps the last silently: this ran 0.1 s.
+    auto e = scene_error(R"({"duration": 0.05, "duration": 0.1})");
+    REQUIRE(e);
+    CHECK(e->file == "scene.json");
+    CHECK(e->field == "duration");
+    CHECK(contains(e->problem, "given twice"));
+    e = scene_error(R"({"solver": {"name": "seed", "cfl": 0.3, "name": "wcsph"}})");
+    REQUIRE(e);
+    CHECK(e->field == "solver.name");
+    e = scene_error(R"({"fluid": {"blocks": [{"min": [0, 0], "max": [0.03, 0.03]},
+                                            {"min": [0, 0], "min": [0.1, 0]}]}})");
+    REQUIRE(e);
+    CHECK(e->field == "fluid.blocks[1].min");
+    // The same key in two objects is fine.
+    CHECK_FALSE(scene_error(R"({"domain": {"min": [0, 0], "max": [0.4, 0.25]},
+                                "fluid": {"blocks": [{"min": [0, 0], "max": [0.05, 0.1]}]}})"));
+    // In a --set value too.
+    e = scene_error("{}", {{"solver", R"({"cfl": 0.3, "cfl": 0.2})"}});
+    REQUIRE(e);
+    CHECK(contains(e->field, "solver (from --set).cfl"));
+}
+
+TEST_CASE("inputs: command-line values that cannot be meant are refused with exit 2, naming "
+          "the key",
+          "[contract][inputs]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", R"({
+        "domain": {"min": [0, 0], "max": [0.1, 0.1]},
+        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
+        "duration": 0.05, "fps": 40
+    })");
+    const auto refused = [&](const std::vector<std::string>& extra,
+                             const std::vector<std::string>& words) {
+        std::vector<std::string> args{"run",      (tmp / "scene.json").string(),
+                                      "--out",    (tmp / "out").string(),
+                                      "--no-png", "--no-mp4"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto result = run_sphclip(tmp, args);
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        for (const auto& word : words)
+            CHECK(contains(result.output, word));
+        CHECK_FALSE(fs::exists(tmp / "out"));
+    };
+    // stoul used to throw out_of_range: exit 1.
+    refused({"--set", "fluid.blocks.99999999999999999999.velocity=[1,0]"},
+            {"fluid.blocks.99999999999999999999.velocity (from --set)", "past the end"});
+    // NaN used to be ignored: the scene's own duration ran.
+    refused({"--duration", "nan"}, {"--duration", "not a finite number"});
+    refused({"--fps", "nan"}, {"--fps", "not a finite number"});
+    refused({"--fps", "inf"}, {"--fps"});
+    // A key of a block past the end used to append a block of defaults.
+    refused({"--set", "fluid.blocks.1.velocity=[1,0]"},
+            {"fluid.blocks.1.velocity (from --set)", "'fluid.blocks' has 1 element",
+             "--set fluid.blocks.1={...}"});
 }

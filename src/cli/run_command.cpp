@@ -43,9 +43,9 @@ CLI::App* add_run_command(CLI::App& app, RunCommandLine& line) {
     cmd->add_option("--threads", run.threads, "Threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
     cmd->add_option("--duration", line.duration, "Simulated seconds (same as --set duration=S)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_finite_number());
     cmd->add_option("--fps", line.fps, "Frames per second (same as --set fps=N)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_finite_number());
     cmd->add_option("--export", run.exports,
                     "Particle data per frame: csv, vtk (binary, compressed) or vtk-ascii")
         ->check(CLI::IsMember({"csv", "vtk", "vtk-ascii"}))

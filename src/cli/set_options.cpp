@@ -2,6 +2,8 @@
 
 #include "io/input_error.hpp"
 
+#include <cmath>
+#include <cstdlib>
 #include <fmt/format.h>
 
 namespace sph {
@@ -24,6 +26,18 @@ std::vector<Override> parse_sets(const std::vector<std::string>& key_values) {
 void check_sets(const std::vector<std::string>& key_values) {
     for (const auto& key_value : key_values)
         parse_set(key_value);
+}
+
+CLI::Validator positive_finite_number() {
+    return CLI::Validator(
+        [](std::string& input) -> std::string {
+            char* end = nullptr;
+            const double value = std::strtod(input.c_str(), &end);
+            if (input.empty() || *end != '\0' || !std::isfinite(value) || !(value > 0))
+                return fmt::format("{} is not a finite number above 0", input);
+            return {};
+        },
+        "POSITIVE");
 }
 
 } // namespace sph

@@ -3,6 +3,7 @@
 
 #include "io/scene.hpp"
 
+#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
@@ -16,5 +17,9 @@ std::vector<Override> parse_sets(const std::vector<std::string>& key_values);
 // The same check for --set values passed on to child runs as they are: a
 // malformed one fails before any run starts.
 void check_sets(const std::vector<std::string>& key_values);
+
+// A command-line number that must be finite and above 0 (--duration, --fps):
+// CLI11's PositiveNumber lets "nan" through, and NaN then fails every check.
+CLI::Validator positive_finite_number();
 
 } // namespace sph

@@ -220,9 +220,9 @@ CLI::App* add_study_command(CLI::App& app, StudyOptions& options) {
         ->type_name("KEY=VALUE")
         ->allow_extra_args(false);
     cmd->add_option("--duration", options.duration, "Simulated seconds (--set duration=S)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_finite_number());
     cmd->add_option("--fps", options.fps, "Frames per second (--set fps=N)")
-        ->check(CLI::PositiveNumber);
+        ->check(positive_finite_number());
     cmd->add_option("--metric", options.metric,
                     "Series compared with the finest run: com (default), kinetic_energy, "
                     "surface_height")

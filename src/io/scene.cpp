@@ -27,6 +27,84 @@ namespace sph {
 
 namespace {
 
+// Finds the first key given twice in one object, which JSON parsers
+// (nlohmann's too) resolve silently by keeping the last: {"duration": 0.05,
+// "duration": 0.1} would run 0.1 s. Builds nothing but the path to it.
+struct DuplicateKeyFinder : nlohmann::json_sax<json> {
+    struct Level {
+        bool object = false;
+        std::set<std::string> keys;
+        std::string key;       // object: the key being read
+        std::size_t items = 0; // array: elements seen so far
+    };
+    std::vector<Level> levels;
+    std::string duplicate; // its path; empty when none
+
+    std::string path_to(const std::string& last) const {
+        std::string path;
+        for (const Level& level : levels) {
+            if (&level == &levels.back())
+                break;
+            path += level.object ? (path.empty() ? "" : ".") + level.key
+                                 : fmt::format("[{}]", level.items - 1);
+        }
+        return path + (path.empty() ? "" : ".") + last;
+    }
+    bool value() {
+        if (!levels.empty() && !levels.back().object)
+            ++levels.back().items;
+        return true;
+    }
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override {
+        value();
+        levels.push_back({true, {}, {}, 0});
+        return true;
+    }
+    bool key(string_t& name) override {
+        if (!levels.back().keys.insert(name).second) {
+            duplicate = path_to(name);
+            return false;
+        }
+        levels.back().key = name;
+        return true;
+    }
+    bool end_object() override {
+        levels.pop_back();
+        return true;
+    }
+    bool start_array(std::size_t) override {
+        value();
+        levels.push_back({false, {}, {}, 0});
+        return true;
+    }
+    bool end_array() override {
+        levels.pop_back();
+        return true;
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+};
+
+// Refuses a key given twice in one object of `text` (valid JSON), naming it.
+void reject_duplicate_keys(const std::string& text, const std::string& file,
+                           const std::string& field_prefix = {}) {
+    DuplicateKeyFinder finder;
+    json::sax_parse(text, &finder, json::input_format_t::json, true, /*ignore_comments=*/true);
+    if (!finder.duplicate.empty())
+        throw InputError(
+            file, field_prefix.empty() ? finder.duplicate : field_prefix + "." + finder.duplicate,
+            "the key is given twice in the same object (JSON would keep only the "
+            "last); give it once");
+}
+
 // Sets root[path] = value for `--set path=value`, creating objects on the way.
 void apply_override(json& root, const Override& o, const std::string& file) {
     const std::string field = o.key + " (from --set)";
@@ -36,6 +114,10 @@ void apply_override(json& root, const Override& o, const std::string& file) {
     json value;
     try {
         value = json::parse(o.value);
+        if (value.is_structured())
+            reject_duplicate_keys(o.value, file, field);
+    } catch (const InputError&) {
+        throw;
     } catch (const json::out_of_range&) {
         throw InputError(file, field, fmt::format("the number {} is out of range", o.value));
     } catch (const json::exception&) {
@@ -57,11 +139,22 @@ void apply_override(json& root, const Override& o, const std::string& file) {
                 throw InputError(file, field,
                                  fmt::format("'{}' is a list; index it with a number",
                                              o.key.substr(0, begin - 1)));
+            // Compared as text first: 99999999999999999999 overflows any integer.
+            const std::string list = o.key.substr(0, begin - 1);
+            const std::string size = std::to_string(node->size());
+            if (segment.size() > size.size() || (segment.size() == size.size() && segment > size))
+                throw InputError(file, field,
+                                 fmt::format("index {} is past the end of '{}', a list of {}",
+                                             segment.substr(0, 24), list, node->size()));
             const std::size_t index = std::stoul(segment);
-            if (index > node->size())
-                throw InputError(
-                    file, field,
-                    fmt::format("index {} is past the end of a list of {}", index, node->size()));
+            // A new element past a list's end is given whole; a key of it
+            // alone would add an element of defaults unseen.
+            if (index == node->size() && !last && node->size() > 0)
+                throw InputError(file, field,
+                                 fmt::format("'{}' has {} element{}, indices 0 to {}; to add one, "
+                                             "give it whole: --set {}.{}={{...}}",
+                                             list, node->size(), node->size() == 1 ? "" : "s",
+                                             node->size() - 1, list, node->size()));
             if (index == node->size())
                 node->push_back(last ? json() : json::object());
             node = &(*node)[index];
@@ -494,7 +587,11 @@ json parse_json_text(const std::string& text, const std::string& file) {
         // Without a callback: nlohmann's callback parser rescans a list at the
         // end of each of its objects, 11 s for a list of 20,000 under the
         // sanitizers (tests/fuzz/regressions/hand-many-blocks.json).
-        return json::parse(text, nullptr, true, /*ignore_comments=*/true);
+        json root = json::parse(text, nullptr, true, /*ignore_comments=*/true);
+        reject_duplicate_keys(text, file);
+        return root;
+    } catch (const InputError&) {
+        throw;
     } catch (const json::parse_error& e) {
         // Line and column from the byte offset nlohmann reports.
         const std::size_t offset = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());

@@ -46,14 +46,16 @@ double run_wall_s(const RunOutputs& run, const ChildRunResult& result) {
     return std::isnan(run.wall_s) ? result.measured_wall_s : run.wall_s;
 }
 
-std::optional<ChildBatch> run_batch(const std::string& intro,
-                                    const std::vector<ChildRunRequest>& requests, int jobs,
-                                    const std::vector<std::string>& names,
-                                    std::string (*status)(const ChildRunResult&)) {
+std::optional<ChildBatch>
+run_batch(const std::string& intro, const std::vector<ChildRunRequest>& requests, int jobs,
+          const std::vector<std::string>& names, std::string (*status)(const ChildRunResult&),
+          const std::function<void(std::size_t, const ChildRunResult&)>& recorded) {
     fmt::print("{}\n", intro);
     std::fflush(stdout);
     std::size_t done = 0;
     ChildBatch batch = run_children(requests, jobs, [&](std::size_t i, const ChildRunResult& r) {
+        if (recorded)
+            recorded(i, r);
         fmt::print("[{}/{}] {}: {} after {:.1f} s\n", ++done, requests.size(), names[i], status(r),
                    r.measured_wall_s);
         std::fflush(stdout);

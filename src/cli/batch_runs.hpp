@@ -9,6 +9,7 @@
 #include "cli/validation_cases.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,9 +43,10 @@ double run_wall_s(const RunOutputs& run, const ChildRunResult& result);
 // "[k/n] NAME: STATUS after S s" as run i ends (names[i], status(result)).
 // Returns nullopt when the first run found the scene or a --set bad, after
 // printing the end of its log: no other run was started.
-std::optional<ChildBatch> run_batch(const std::string& intro,
-                                    const std::vector<ChildRunRequest>& requests, int jobs,
-                                    const std::vector<std::string>& names,
-                                    std::string (*status)(const ChildRunResult&));
+// `recorded(i, result)` is called first (a plan's exit record).
+std::optional<ChildBatch>
+run_batch(const std::string& intro, const std::vector<ChildRunRequest>& requests, int jobs,
+          const std::vector<std::string>& names, std::string (*status)(const ChildRunResult&),
+          const std::function<void(std::size_t, const ChildRunResult&)>& recorded = {});
 
 } // namespace sph

@@ -1,9 +1,11 @@
 // sphclip: scene file -> SPH simulation -> per-frame outputs, on a machine
 // with no screen. See README.md for the command line and exit codes.
 
+#include "cli/collect_command.hpp"
 #include "cli/compare_command.hpp"
 #include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/plan_batch.hpp"
 #include "cli/run_command.hpp"
 #include "cli/stop_signals.hpp"
 #include "cli/study_command.hpp"
@@ -81,6 +83,12 @@ int main(int argc, char** argv) {
     sph::StudyOptions study;
     auto* study_cmd = sph::add_study_command(app, study);
 
+    sph::BatchOptions batch;
+    auto* batch_cmd = sph::add_batch_command(app, batch);
+
+    sph::PlanCommandOptions plan;
+    const auto plan_cmds = sph::add_plan_commands(app, plan);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -101,6 +109,14 @@ int main(int argc, char** argv) {
             study.command_line = join_arguments(argc, argv);
             return sph::study_command(study);
         }
+        if (*batch_cmd)
+            return sph::batch_command(batch);
+        if (*plan_cmds.collect)
+            return sph::collect_command(plan);
+        if (*plan_cmds.run_plan)
+            return sph::run_plan_command(plan, plan_cmds.run_plan->get_option("--engine")->count());
+        if (*plan_cmds.plan_task)
+            return sph::plan_task_command(plan);
         return sph::run_command(sph::run_options(run, join_arguments(argc, argv)));
     } catch (const sph::GlContextError& e) {
         sph::say(stderr, "sphclip: error: {}\nsphclip: (--no-png --no-mp4 runs need no OpenGL)\n",

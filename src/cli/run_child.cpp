@@ -128,9 +128,12 @@ class ChildPool {
 } // namespace
 
 std::vector<std::string> child_run_arguments(const ChildRunRequest& request) {
-    std::vector<std::string> args{
-        "run",   request.scene.string(), "--no-png", "--no-mp4", "--quiet",
-        "--out", request.out.string()};
+    std::vector<std::string> args{"run", request.scene.string()};
+    if (!request.frames)
+        args.push_back("--no-png");
+    if (!request.video)
+        args.push_back("--no-mp4");
+    args.insert(args.end(), {"--quiet", "--out", request.out.string()});
     for (const auto& set : request.sets) {
         args.push_back("--set");
         args.push_back(set);

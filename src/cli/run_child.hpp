@@ -16,9 +16,11 @@ struct ChildRunRequest {
     std::vector<std::string> sets; // "KEY=VALUE", passed on as --set in order
     bool export_csv = false;       // --export csv (particle files per frame)
     int threads = 0;               // --threads; 0: the child's default (all cores)
+    bool frames = false;           // PNG frames (else --no-png); a batch's clips have them
+    bool video = false;            // clip.mp4 (else --no-mp4)
 };
 
-// `run SCENE --no-png --no-mp4 --quiet --out DIR [--set K=V]... [--export csv] [--threads N]`
+// `run SCENE [--no-png] [--no-mp4] --quiet --out DIR [--set K=V]... [--export csv] [--threads N]`
 std::vector<std::string> child_run_arguments(const ChildRunRequest& request);
 
 struct ChildRunResult {

@@ -8,6 +8,7 @@
 #include "cli/batch_runs.hpp"
 #include "cli/child_process.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/plan_engine.hpp"
 #include "cli/run_child.hpp"
 #include "cli/set_options.hpp"
 #include "cli/study_report.hpp"
@@ -240,6 +241,7 @@ CLI::App* add_study_command(CLI::App& app, StudyOptions& options) {
     cmd->add_option("--reference-dir", options.reference_dir,
                     "Folder of the reference tables (default: the repository's "
                     "data/reference, searched)");
+    add_engine_options(cmd, options.engine);
     return cmd;
 }
 
@@ -249,6 +251,7 @@ int study_command(const StudyOptions& options) {
         variations.push_back(parse_variation(v));
     const auto combinations = expand_combinations(variations);
     check_sets(options.sets);
+    check_engine_options(options.engine);
     const fs::path scene = options.scene;
     if (!fs::is_regular_file(scene))
         throw InputError(scene.string(), "", "no such scene file");
@@ -274,46 +277,72 @@ int study_command(const StudyOptions& options) {
                    "(--reference finest compares them with the finest run)\n",
                    options.metric, scored_case->name);
     const bool particles_needed = scored_case || metric != "kinetic_energy";
-    const int threads = threads_per_run(options.threads, options.jobs);
-    StudyReport report;
-    report.scene = options.scene;
-    report.command_line = options.command_line;
+    const int threads = plan_threads(options.threads, options.jobs, options.engine);
+
+    // The plan: every run's request, and what collect needs to score them.
+    Plan plan;
+    plan.kind = "study";
+    plan.folder = fs::absolute(out).lexically_normal();
+    plan.program = self_executable();
+    plan.engine = engine_record(options.engine, options.jobs);
+    nlohmann::json rows = nlohmann::json::array();
+    std::vector<std::string> keys;
     for (const auto& v : variations)
-        report.keys.push_back(v.key);
-    std::vector<ChildRunRequest> requests;
-    std::vector<std::string> names;
+        keys.push_back(v.key);
     for (std::size_t i = 0; i < combinations.size(); ++i) {
-        StudyRow row;
-        row.run = i;
-        row.values = combinations[i];
-        row.folder = run_folder_name(i, combinations.size(), combinations[i]);
-        report.rows.push_back(row);
-        ChildRunRequest request{scene, out / "runs" / row.folder, common, particles_needed,
-                                threads};
+        const std::string folder = run_folder_name(i, combinations.size(), combinations[i]);
+        rows.push_back({{"folder", folder}, {"values", combinations[i]}});
+        ChildRunRequest request{fs::absolute(scene), plan.folder / "runs" / folder, common,
+                                particles_needed, threads};
         for (const auto& [key, value] : combinations[i])
             request.sets.push_back(key + "=" + value);
-        requests.push_back(request);
-        names.push_back("run " + row.folder);
+        plan.runs.push_back({"run " + folder, request});
     }
+    plan.details = {
+        {"scene", options.scene},
+        {"out", out.string()},
+        {"command_line", options.command_line},
+        {"keys", keys},
+        {"rows", rows},
+        {"case", scored_case ? scored_case->name : ""},
+        {"references", references.empty() ? std::string() : fs::absolute(references).string()},
+        {"metric", metric}};
+    write_plan(plan, options.engine.engine == "slurm");
+    return execute_plan(plan, options.engine, options.jobs, all_runs(plan),
+                        fmt::format("study: {} runs of {} into {}/, {} at a time", plan.runs.size(),
+                                    scene.string(), out.string(), options.jobs));
+}
 
-    const auto batch =
-        run_batch(fmt::format("study: {} runs of {} into {}/, {} at a time", requests.size(),
-                              scene.string(), out.string(), options.jobs),
-                  requests, options.jobs, names, status_of);
-    if (!batch)
-        return exit_bad_input;
+std::string study_run_status(const ChildRunResult& result) {
+    return status_of(result);
+}
 
-    for (std::size_t i = 0; i < report.rows.size(); ++i)
-        fill_row(report.rows[i], batch->runs[i], requests[i].out);
-    if (scored_case)
-        score_against_case(*scored_case, references, out / "runs", report);
+int collect_study(const Plan& plan) {
+    const auto& d = plan.details;
+    StudyReport report;
+    report.scene = d.at("scene").get<std::string>();
+    report.command_line = d.at("command_line").get<std::string>();
+    report.keys = d.at("keys").get<std::vector<std::string>>();
+    const auto& rows = d.at("rows");
+    for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+        StudyRow row;
+        row.run = i;
+        row.folder = rows.at(i).at("folder").get<std::string>();
+        row.values = rows.at(i).at("values").get<Combination>();
+        fill_row(row, read_run_record(plan, i), plan.runs[i].request.out);
+        report.rows.push_back(row);
+    }
+    const fs::path runs = plan.folder / "runs";
+    const std::string case_name = d.at("case").get<std::string>();
+    if (const ValidationCase* scored_case = find_validation_case(case_name))
+        score_against_case(*scored_case, d.at("references").get<std::string>(), runs, report);
     else
-        score_against_finest(metric, out / "runs", report);
+        score_against_finest(d.at("metric").get<std::string>(), runs, report);
 
     mark_pareto_front(report);
-    write_study_report(report, out);
-    print_study(report, out);
-    return batch->interrupted ? exit_interrupted : exit_success;
+    write_study_report(report, plan.folder);
+    print_study(report, d.at("out").get<std::string>());
+    return exit_success;
 }
 
 } // namespace sph

@@ -3,6 +3,9 @@
 // combination of the varied values and weighs accuracy against cost
 // (docs/validation.md, "Studies").
 
+#include "cli/plan_engine.hpp"
+#include "cli/plan_folder.hpp"
+
 #include <string>
 #include <vector>
 
@@ -25,14 +28,24 @@ struct StudyOptions {
     int threads = 0; // per run; 0: all cores, or 1 when jobs > 1
     std::string reference_dir;
     std::string command_line; // recorded in study.md
+    EngineOptions engine;     // --engine and its options (plan_engine.hpp)
 };
 
 // Adds the `study` subcommand to `app`; parsing fills `options`.
 CLI::App* add_study_command(CLI::App& app, StudyOptions& options);
 
-// Returns 0 when every run was tried (unstable or failed runs are rows that
-// say so), 2 when the first run finds the scene or a --set bad, 130 when
-// interrupted. Throws InputError for a bad --vary or --reference.
+// Writes the plan into --out, then runs it with the engine and collects
+// (collect_study). Returns 0 when every run was tried (unstable or failed
+// runs are rows that say so), 2 when the first run finds the scene or a
+// --set bad, 130 when interrupted. Throws InputError for a bad --vary or
+// --reference. Under --engine slurm it returns once submitted.
 int study_command(const StudyOptions& options);
+
+// study.csv, study.md and study.png from the runs' outputs and exit
+// records; 0.
+int collect_study(const Plan& plan);
+
+// ok, unstable, failed, interrupted, not_run: a run's status in study.csv.
+std::string study_run_status(const ChildRunResult& result);
 
 } // namespace sph

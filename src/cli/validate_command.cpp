@@ -5,6 +5,7 @@
 #include "cli/child_process.hpp"
 #include "cli/data_folders.hpp"
 #include "cli/exit_codes.hpp"
+#include "cli/plan_engine.hpp"
 #include "cli/run_child.hpp"
 #include "cli/set_options.hpp"
 #include "cli/validation_cases.hpp"
@@ -159,12 +160,14 @@ CLI::App* add_validate_command(CLI::App& app, ValidateOptions& options) {
     cmd->add_option("--reference-dir", options.reference_dir,
                     "Folder of the reference tables (default: the repository's "
                     "data/reference, searched)");
+    add_engine_options(cmd, options.engine);
     return cmd;
 }
 
 int validate_command(const ValidateOptions& options) {
     const auto selected = select_cases(options.cases);
     check_sets(options.sets);
+    check_engine_options(options.engine);
     const fs::path scenes =
         options.scenes_dir.empty() ? find_scenes_folder() : fs::path(options.scenes_dir);
     fs::path references = options.reference_dir;
@@ -172,30 +175,52 @@ int validate_command(const ValidateOptions& options) {
 
     const fs::path out = options.out;
     create_out_folder(out);
-    const int threads = threads_per_run(options.threads, options.jobs);
-    std::vector<ChildRunRequest> requests;
+    const int threads = plan_threads(options.threads, options.jobs, options.engine);
+    Plan plan;
+    plan.kind = "validate";
+    plan.folder = fs::absolute(out).lexically_normal();
+    plan.program = self_executable();
+    plan.engine = engine_record(options.engine, options.jobs);
     std::vector<std::string> names;
     for (const auto* c : selected) {
-        requests.push_back({scenes / (c->name + ".json"), out / c->name / "run",
-                            run_sets(c, options.sets), true, threads});
+        plan.runs.push_back(
+            {c->name,
+             {fs::absolute(scenes / (c->name + ".json")), plan.folder / c->name / "run",
+              run_sets(c, options.sets), true, threads}});
         names.push_back(c->name);
     }
+    plan.details = {
+        {"out", out.string()},
+        {"cases", names},
+        {"references", references.empty() ? std::string() : fs::absolute(references).string()}};
+    write_plan(plan, options.engine.engine == "slurm");
+    return execute_plan(plan, options.engine, options.jobs, all_runs(plan),
+                        fmt::format("validate: {} case(s) into {}/, {} at a time", selected.size(),
+                                    out.string(), options.jobs));
+}
 
-    const auto batch = run_batch(fmt::format("validate: {} case(s) into {}/, {} at a time",
-                                             selected.size(), out.string(), options.jobs),
-                                 requests, options.jobs, names, status_of);
-    if (!batch)
-        return exit_bad_input;
+std::string validate_run_status(const ChildRunResult& result) {
+    return status_of(result);
+}
 
+int collect_validate(const Plan& plan) {
+    const auto& d = plan.details;
+    const fs::path references = d.at("references").get<std::string>();
+    const std::string out = d.at("out").get<std::string>();
+    const auto selected = select_cases(d.at("cases").get<std::vector<std::string>>());
     CaseOutcomes outcomes;
+    bool interrupted = false;
     std::string summary = std::string(summary_header) + "\n";
-    for (std::size_t i = 0; i < selected.size(); ++i)
-        summary += report_case(*selected[i], batch->runs[i], requests[i].out,
-                               out / selected[i]->name, references, outcomes);
-    write_file_atomically(out / "summary.csv", summary);
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+        const ChildRunResult result = read_run_record(plan, i);
+        interrupted |= result.started && result.exit_code == exit_interrupted;
+        summary += report_case(*selected[i], result, plan.runs[i].request.out,
+                               plan.folder / selected[i]->name, references, outcomes);
+    }
+    write_file_atomically(plan.folder / "summary.csv", summary);
     fmt::print("validate: summary in {}; comparison tables and plots in {}/CASE/\n",
-               (out / "summary.csv").string(), out.string());
-    if (batch->interrupted)
+               (fs::path(out) / "summary.csv").string(), out);
+    if (interrupted)
         return exit_interrupted;
     if (outcomes.bad_input)
         return exit_bad_input;

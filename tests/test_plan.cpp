@@ -183,7 +183,7 @@ TEST_CASE("batch runs scenes from the command line and a list; batch.csv has the
     }
 }
 
-TEST_CASE("--engine slurm writes one array script and a collect job that waits for it",
+TEST_CASE("the Slurm engine writes one array script and a collect job that waits for it",
           "[plan][cli][slurm]") {
     TempFolder tmp;
     write_text(tmp / "tiny.json", tiny_scene);

@@ -301,3 +301,29 @@ TEST_CASE("validate writes a plan; collect scores it again", "[plan][cli]") {
     // The same scores; only the wall time could differ, and it is the run's own.
     CHECK(read_text(out / "summary.csv") == summary);
 }
+
+TEST_CASE("under Slurm a scene that does not resolve is refused before the plan is written",
+          "[plan][cli][slurm]") {
+    TempFolder tmp;
+    write_text(tmp / "tiny.json", tiny_scene);
+    const fs::path out = tmp / "study";
+    auto args = study_args(tmp, out);
+    for (const char* a : {"--set", "fluid.spacingg=0.01", "--engine", "slurm", "--dry-run"})
+        args.push_back(a);
+    const auto r = run_sphclip(tmp, args);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains("fluid.spacingg"));
+    CHECK_FALSE(fs::exists(out / "plan.json"));
+    CHECK_FALSE(fs::exists(out / "slurm"));
+
+    // validate's plan goes to Slurm the same way: one task per case.
+    const auto v = run_sphclip(tmp,
+                               {"validate", "hydrostatic_2d", "dam_break_2d", "--out",
+                                (tmp / "v").string(), "--engine", "slurm", "--dry-run"},
+                               SPHCLIP_SOURCE_DIR);
+    INFO(v.output);
+    CHECK(v.exit_code == 0);
+    CHECK_THAT(read_text(tmp / "v" / "slurm" / "array.sbatch"),
+               Catch::Contains("#SBATCH --array=0-1\n") &&
+                   Catch::Contains("#SBATCH --job-name=sphclip-validate\n"));
+}

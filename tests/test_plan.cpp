@@ -110,6 +110,16 @@ TEST_CASE("a study writes its plan, and collect rebuilds its results from the ru
     const auto partial = run_sphclip(tmp, {"collect", out.string()});
     CHECK_THAT(partial.output, Catch::Contains("run 2 (run 02_") && Catch::Contains("not run"));
     CHECK(read_text_csv(out / "study.csv").at(2, "status") == "not_run");
+
+    // Sent again with the plan's engine (local): only the runs that did not exit 0.
+    const fs::path run0_exit = out / plan["runs"][0]["task"].get<std::string>() / "exit.json";
+    const std::string run0_record = read_text(run0_exit);
+    const auto again = run_sphclip(tmp, {"collect", "--resubmit", out.string()});
+    INFO(again.output);
+    CHECK(again.exit_code == 0);
+    CHECK_THAT(again.output, Catch::Contains("3 run(s) of"));
+    CHECK(read_text(run0_exit) == run0_record);
+    CHECK(read_text_csv(out / "study.csv").at(2, "status") == "ok");
 }
 
 TEST_CASE("a --dry-run plan runs later with run-plan, or a run at a time with plan-task",

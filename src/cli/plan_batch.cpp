@@ -73,6 +73,16 @@ std::string last_state_hash(const fs::path& run) {
     return "";
 }
 
+// A CSV cell: quoted when it holds a comma, a quote or a line break.
+std::string csv_cell(const std::string& text) {
+    if (text.find_first_of(",\"\n") == std::string::npos)
+        return text;
+    std::string quoted = "\"";
+    for (char c : text)
+        quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
 } // namespace
 
 std::string batch_run_status(const ChildRunResult& result) {
@@ -173,10 +183,11 @@ int collect_batch(const Plan& plan) {
         const std::string status = batch_run_status(result);
         const double wall = result.started ? run_wall_s(run, result) : NAN;
         csv += fmt::format("{},{},{},{},{},{},{},{},runs/{}\n", i,
-                           rows.at(i).at("scene").get<std::string>(), status,
+                           csv_cell(rows.at(i).at("scene").get<std::string>()), status,
                            result.started ? std::to_string(result.exit_code) : "", run.particles,
                            run.steps, std::isfinite(wall) ? fmt::format("{:.4g}", wall) : "",
-                           last_state_hash(folder), rows.at(i).at("folder").get<std::string>());
+                           last_state_hash(folder),
+                           csv_cell(rows.at(i).at("folder").get<std::string>()));
         fmt::print("run {:>3}  {:<40} {:<13} wall={:.3g}\n", i, plan.runs[i].name, status, wall);
         interrupted |= status == "interrupted";
         bad_input |= status == "bad_input";

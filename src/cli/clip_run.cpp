@@ -109,7 +109,8 @@ class ClipRun {
         : scene_(scene), folder_(folder), options_(options), derived_(derive(scene)),
           sim_(make_simulation<D>(scene, derived_)),
           frames_(static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1),
-          progress_(!options.quiet && isatty(STDOUT_FILENO)) {
+          progress_(progress_mode(options.progress, options.quiet, isatty(STDOUT_FILENO)),
+                    options.progress_interval_s) {
         add_sinks(std::move(gl_context));
         // Only the fields some sink reads are computed for output and copied.
         for (const auto& sink : sinks_)
@@ -277,7 +278,7 @@ class ClipRun {
     // run.json records how the run ended and where the time went, and the
     // ending is told.
     int finish(RunEnd end) {
-        progress_.done();
+        progress_.done(wall());
         // An encoder error may surface only as the video is finalised: the
         // run failed, unless it had failed already (the first error is the
         // one to report) or a sink failed before a blow-up (then the failure

@@ -5,6 +5,7 @@
 #include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/output_folder.hpp"
+#include "cli/progress.hpp"
 #include "cli/set_options.hpp"
 #include "cli/stop_signals.hpp"
 #include "io/files.hpp"
@@ -150,7 +151,11 @@ CLI::App* add_run_command(CLI::App& app, RunCommandLine& line) {
         ->allow_extra_args(false);
     cmd->add_flag("--no-png", line.no_png, "Write no PNG frames");
     cmd->add_flag("--no-mp4", line.no_mp4, "Write no MP4 video");
-    cmd->add_flag("--quiet", run.quiet, "No progress line or summary");
+    cmd->add_flag("--quiet", run.quiet,
+                  "No summary, and no progress unless --progress bar or lines is given");
+    cmd->add_option("--progress", run.progress,
+                    "auto (a bar on a terminal, else a line every 10 s), bar, lines or none")
+        ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
     cmd->add_flag("--fast-preview", run.fast_preview,
                   "Half-size frames and the fastest x264 preset (ultrafast)");
     cmd->add_option("--backend", run.backend,
@@ -175,6 +180,7 @@ RunOptions run_options(const RunCommandLine& line, const std::string& command_li
     run.png = !line.no_png;
     run.mp4 = !line.no_mp4;
     run.command_line = command_line;
+    run.progress_interval_s = progress_interval();
     return run;
 }
 

@@ -30,6 +30,8 @@ struct RunOptions {
     bool png = true;
     bool mp4 = true;
     bool quiet = false;
+    std::string progress = "auto";   // --progress: auto | bar | lines | none (progress.hpp)
+    double progress_interval_s = 10; // between plain progress lines (progress_interval())
     // Half the image size (rounded to even) and the fastest x264 preset.
     bool fast_preview = false;
     std::string backend;      // --backend; empty: the scene's render.backend

@@ -2,8 +2,8 @@
 # git commit, the compiler, the build type and the flags. Taken when CMake
 # configures, into a small generated header that is rewritten only when its
 # text changes (configure_file), so a configure with nothing new rebuilds
-# nothing; a new commit is picked up by the next configure, which
-# `cmake --build` runs by itself when a CMakeLists.txt changed, or by hand.
+# nothing; a new commit or checkout makes the next `cmake --build` configure
+# again (below), and so rebuilds one file.
 # Included from the top CMakeLists.txt after sphclip_options is defined.
 
 set(sphclip_git_commit "unknown")
@@ -27,6 +27,32 @@ if(GIT_FOUND)
         if(sphclip_git_rc EQUAL 0 AND sphclip_git_describe)
             set(sphclip_git_commit "${sphclip_git_describe}")
         endif()
+        # A commit or a checkout configures again at the next build, so the
+        # commit recorded is the one built: HEAD, and the branch it names
+        # (a packed ref has no file; packed-refs then stands for it). Edits
+        # that make the tree dirty are seen at the next configure only.
+        execute_process(COMMAND ${GIT_EXECUTABLE} rev-parse --git-path HEAD
+            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+            OUTPUT_VARIABLE sphclip_git_head OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+        execute_process(COMMAND ${GIT_EXECUTABLE} symbolic-ref -q HEAD
+            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+            OUTPUT_VARIABLE sphclip_git_branch OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+        set(sphclip_git_watch ${sphclip_git_head})
+        foreach(ref ${sphclip_git_branch} packed-refs)
+            execute_process(COMMAND ${GIT_EXECUTABLE} rev-parse --git-path ${ref}
+                WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+                OUTPUT_VARIABLE sphclip_git_ref OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+            list(APPEND sphclip_git_watch ${sphclip_git_ref})
+        endforeach()
+        foreach(watched ${sphclip_git_watch})
+            if(NOT IS_ABSOLUTE "${watched}")
+                set(watched "${PROJECT_SOURCE_DIR}/${watched}")
+            endif()
+            if(EXISTS "${watched}")
+                set_property(DIRECTORY ${PROJECT_SOURCE_DIR} APPEND PROPERTY
+                    CMAKE_CONFIGURE_DEPENDS "${watched}")
+            endif()
+        endforeach()
     endif()
 endif()
 

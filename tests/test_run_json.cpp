@@ -180,3 +180,24 @@ TEST_CASE("A re-run without --out goes to the recorded folder's name with -rerun
     CHECK(column(tmp / "out" / "emitter_fill_2d-rerun" / "stats.csv", "state_hash") ==
           column(tmp / "a" / "stats.csv", "state_hash"));
 }
+
+TEST_CASE("A re-run draws with the recorded GL backend, to the same frames",
+          "[cli][run_json][render]") {
+    TempFolder tmp;
+    const auto first =
+        run_sphclip(tmp,
+                    {"run", emitter_scene, "--out", "a", "--no-mp4", "--duration", "0.04", "--set",
+                     "render.size=[64,48]", "--backend", "osmesa", "--quiet"},
+                    tmp.path());
+    INFO(first.output);
+    REQUIRE(first.exit_code == 0);
+    REQUIRE(read_json(tmp / "a" / "run.json").at("gl").at("backend") == "osmesa");
+
+    const auto rerun = run_sphclip(tmp, {"run", "a/run.json", "--out", "b", "--quiet"}, tmp.path());
+    INFO(rerun.output);
+    REQUIRE(rerun.exit_code == 0);
+    CHECK(read_json(tmp / "b" / "run.json").at("gl").at("backend") == "osmesa");
+    CHECK(read_text(tmp / "b" / "frames" / "frame_00001.png") ==
+          read_text(tmp / "a" / "frames" / "frame_00001.png"));
+    CHECK(!fs::exists(tmp / "b" / "clip.mp4"));
+}

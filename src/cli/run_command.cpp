@@ -59,8 +59,8 @@ std::string text_or_unknown(const nlohmann::json& document, const char* key) {
 
 // The scene a run.json recorded (resolved: every key, derived values filled
 // in), with the command line's overrides on top, and the run options it
-// recorded where the command line gives none: --threads, --export; --no-png
-// and --no-mp4 can only turn an output off. The scene is labelled with the
+// recorded where the command line gives none: --threads, --export, the GL
+// backend; --no-png and --no-mp4 can only turn an output off. The scene is labelled with the
 // run.json's path in messages, except that a scene with mesh obstacles is
 // read as the recorded scene file, whose folder its OBJ files are relative to.
 Scene rerun_scene(const fs::path& file, const nlohmann::json& document, RunOptions& options) {
@@ -102,6 +102,14 @@ Scene rerun_scene(const fs::path& file, const nlohmann::json& document, RunOptio
         if (outputs->contains("mp4") && (*outputs)["mp4"] == false)
             options.mp4 = false;
     }
+    // The GL context it drew with (frames from EGL and OSMesa may differ in
+    // a few pixels), unless --backend names one.
+    if (options.backend.empty())
+        if (const auto gl = document.find("gl"); gl != document.end() && gl->is_object()) {
+            const std::string backend = text_or_unknown(*gl, "backend");
+            if (backend == "egl" || backend == "osmesa")
+                options.backend = backend;
+        }
     const std::string commit = document.contains("build") && document["build"].is_object()
                                    ? text_or_unknown(document["build"], "git_commit")
                                    : std::string("unknown");

@@ -1,5 +1,6 @@
 #include "cli/clip_run.hpp"
 
+#include "cli/build_info.hpp"
 #include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/progress.hpp"
@@ -74,13 +75,18 @@ std::string message_of(const std::exception_ptr& error) {
 struct RunRecord {
     json document;
     fs::path path;
+    // `ended`: the run is over (then "ended_utc" is written).
     void save(const std::string& status, std::uint64_t frames, std::uint64_t steps,
-              double simulated, double wall, const std::string& error = {}) {
+              double simulated, double wall, std::size_t particles, bool ended,
+              const std::string& error = {}) {
         document["status"] = status;
         document["frames"] = frames;
         document["steps"] = steps;
         document["simulated_time"] = simulated;
         document["wall_s"] = wall;
+        document["final_particles"] = particles;
+        if (ended)
+            document["ended_utc"] = utc_iso8601(std::chrono::system_clock::now());
         if (!error.empty())
             document["error"] = error;
         write_file_atomically(path, document.dump(2) + "\n");
@@ -103,7 +109,8 @@ class ClipRun {
         : scene_(scene), folder_(folder), options_(options), derived_(derive(scene)),
           sim_(make_simulation<D>(scene, derived_)),
           frames_(static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1),
-          progress_(!options.quiet && isatty(STDOUT_FILENO)) {
+          progress_(progress_mode(options.progress, options.quiet, isatty(STDOUT_FILENO)),
+                    options.progress_interval_s) {
         add_sinks(std::move(gl_context));
         // Only the fields some sink reads are computed for output and copied.
         for (const auto& sink : sinks_)
@@ -111,7 +118,7 @@ class ClipRun {
         sim_.set_output_fields(fields_);
         record_.path = folder_ / "run.json";
         record_.document = starting_document();
-        record_.save("running", 0, 0, 0, 0);
+        record_.save("running", 0, 0, 0, 0, sim_.state().size(), false);
         if (!options_.quiet)
             print_start();
     }
@@ -166,6 +173,9 @@ class ClipRun {
             {"sphclip_version", SPHCLIP_VERSION},
             {"command", options_.command_line},
             {"scene_file", scene_.file},
+            {"scene_file_absolute", options_.scene_file_absolute.empty()
+                                        ? json(nullptr)
+                                        : json(options_.scene_file_absolute)},
             {"scene", to_json(scene_)},
             {"derived",
              {{"smoothing_length", derived_.h},
@@ -175,6 +185,9 @@ class ClipRun {
               {"max_speed", sim_.params().watchdog.max_speed}}},
             {"particles", sim_.state().size()},
             {"threads", omp_get_max_threads()},
+            {"started_utc", utc_iso8601(started_)},
+            {"build", build_json()},
+            {"machine", machine_json()},
             {"solver", std::string(sim_.solver().name())},
             {"neighbour_search", std::string(sim_.search().name())},
             {"fast_preview", options_.fast_preview},
@@ -185,6 +198,11 @@ class ClipRun {
               {"mp4", options_.mp4 ? json("clip.mp4") : json(false)}}},
             {"output_fields", {{"pressure", fields_.pressure}}},
         };
+        if (options_.rerun_of)
+            document["rerun_of"] = {{"run_json", options_.rerun_of->run_json.string()},
+                                    {"sphclip_version", options_.rerun_of->sphclip_version},
+                                    {"git_commit", options_.rerun_of->git_commit},
+                                    {"started_utc", options_.rerun_of->started_utc}};
         if (render_)
             document["gl"] = {{"backend", render_->gl_info().backend},
                               {"vendor", render_->gl_info().vendor},
@@ -260,7 +278,7 @@ class ClipRun {
     // run.json records how the run ended and where the time went, and the
     // ending is told.
     int finish(RunEnd end) {
-        progress_.done();
+        progress_.done(wall());
         // An encoder error may surface only as the video is finalised: the
         // run failed, unless it had failed already (the first error is the
         // one to report) or a sink failed before a blow-up (then the failure
@@ -271,7 +289,7 @@ class ClipRun {
         const double seconds = wall();
         const std::vector<StageRow> stages = record_timings(seconds);
         record_.save(status_name(end.status), written_, sim_.steps(), sim_.time(), seconds,
-                     end.error);
+                     sim_.state().size(), true, end.error);
         switch (end.status) {
         case RunStatus::completed:
             if (!options_.quiet)
@@ -376,6 +394,8 @@ class ClipRun {
     RunRecord record_;
     Progress progress_;
     Clock::time_point start_;
+    // Wall-clock time as the run was set up: run.json "started_utc".
+    const std::chrono::system_clock::time_point started_ = std::chrono::system_clock::now();
     Snapshot snapshot_;
     std::uint64_t written_ = 0;
     // Where the time went beyond the simulation's own stages.

@@ -1,11 +1,14 @@
 #include "cli/run_command.hpp"
 
+#include "cli/build_info.hpp"
 #include "cli/clip_run.hpp"
 #include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/output_folder.hpp"
+#include "cli/progress.hpp"
 #include "cli/set_options.hpp"
 #include "cli/stop_signals.hpp"
+#include "io/files.hpp"
 #include "io/input_error.hpp"
 #include "render/gl_context.hpp"
 
@@ -13,6 +16,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <omp.h>
 #include <unistd.h>
 
@@ -28,6 +32,109 @@ void make_fast_preview(Scene& scene) {
     for (int& side : scene.render.size)
         side = 2 * std::max(1, (side + 2) / 4);
     scene.render.video_preset = "ultrafast";
+}
+
+// A run.json that sphclip wrote: an object with sphclip_version and a scene
+// object. Anything else (a scene file, a file that cannot be read or parsed)
+// is none, and goes to load_scene, which names its problem.
+std::optional<nlohmann::json> read_run_json(const fs::path& file) {
+    std::string text;
+    try {
+        text = read_input_file(file, {"run.json", std::uint64_t(64) << 20});
+    } catch (const FileReadError&) {
+        return std::nullopt;
+    }
+    auto document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false,
+                                          /*ignore_comments=*/true);
+    if (document.is_object() && document.contains("sphclip_version") &&
+        document.contains("scene") && document["scene"].is_object())
+        return document;
+    return std::nullopt;
+}
+
+std::string text_or_unknown(const nlohmann::json& document, const char* key) {
+    const auto it = document.find(key);
+    return it != document.end() && it->is_string() ? it->get<std::string>() : "unknown";
+}
+
+// The scene a run.json recorded (resolved: every key, derived values filled
+// in), with the command line's overrides on top, and the run options it
+// recorded where the command line gives none: --threads, --export, the GL
+// backend; --no-png and --no-mp4 can only turn an output off. The scene is labelled with the
+// run.json's path in messages, except that a scene with mesh obstacles is
+// read as the recorded scene file, whose folder its OBJ files are relative to.
+Scene rerun_scene(const fs::path& file, const nlohmann::json& document, RunOptions& options) {
+    const std::string label = file.string();
+    const nlohmann::json& recorded = document["scene"];
+    std::string mesh_label = label;
+    if (const auto effects = recorded.find("effects");
+        effects != recorded.end() && effects->is_object() && effects->contains("obstacles")) {
+        for (const auto& obstacle : (*effects)["obstacles"])
+            if (obstacle.is_object() && obstacle.contains("mesh"))
+                mesh_label = text_or_unknown(document, "scene_file_absolute");
+    }
+    if (mesh_label == "unknown")
+        throw InputError(label, "scene_file_absolute",
+                         "a scene with mesh obstacles is re-run from the recorded scene file's "
+                         "folder, and this run.json does not record it");
+    Scene scene = parse_scene(recorded.dump(), mesh_label, options.overrides);
+    // The recorded output.name is the original scene's name (or its own).
+    if (scene.output.name)
+        scene.name = *scene.output.name;
+    scene.file = label;
+    options.scene_file_absolute = text_or_unknown(document, "scene_file_absolute");
+    if (options.scene_file_absolute == "unknown")
+        options.scene_file_absolute.clear();
+
+    if (options.threads == 0)
+        if (const auto threads = document.find("threads");
+            threads != document.end() && threads->is_number_integer() && *threads > 0)
+            options.threads = threads->get<int>();
+    if (const auto outputs = document.find("outputs");
+        outputs != document.end() && outputs->is_object()) {
+        if (options.exports.empty() && outputs->contains("exports") &&
+            (*outputs)["exports"].is_array())
+            for (const auto& format : (*outputs)["exports"])
+                if (format.is_string())
+                    options.exports.push_back(format.get<std::string>());
+        if (outputs->contains("png") && (*outputs)["png"] == false)
+            options.png = false;
+        if (outputs->contains("mp4") && (*outputs)["mp4"] == false)
+            options.mp4 = false;
+    }
+    // The GL context it drew with (frames from EGL and OSMesa may differ in
+    // a few pixels), unless --backend names one.
+    if (options.backend.empty())
+        if (const auto gl = document.find("gl"); gl != document.end() && gl->is_object()) {
+            const std::string backend = text_or_unknown(*gl, "backend");
+            if (backend == "egl" || backend == "osmesa")
+                options.backend = backend;
+        }
+    const std::string commit = document.contains("build") && document["build"].is_object()
+                                   ? text_or_unknown(document["build"], "git_commit")
+                                   : std::string("unknown");
+    options.rerun_of = RerunSource{fs::absolute(file).lexically_normal(),
+                                   text_or_unknown(document, "sphclip_version"), commit,
+                                   text_or_unknown(document, "started_utc")};
+    return scene;
+}
+
+// A re-run's folder: --out, or the recorded run's default folder with
+// "-rerun" added (out/dam_break_2d-rerun/). Never the run.json's own
+// folder: that would replace the run being reproduced.
+fs::path rerun_folder(const RunOptions& options, const Scene& scene) {
+    fs::path folder = options.out ? *options.out : output_folder(scene);
+    if (!options.out)
+        folder = folder.parent_path() / (folder.filename().string() + "-rerun");
+    std::error_code ec;
+    const fs::path source = fs::weakly_canonical(fs::absolute(*options.scene).parent_path(), ec);
+    const fs::path target = fs::weakly_canonical(fs::absolute(folder), ec);
+    if (source == target)
+        throw InputError("command line", "--out",
+                         fmt::format("{} is the folder of the run.json being re-run; a re-run "
+                                     "would replace the run it reproduces: give another --out",
+                                     folder.string()));
+    return folder;
 }
 
 } // namespace
@@ -52,7 +159,11 @@ CLI::App* add_run_command(CLI::App& app, RunCommandLine& line) {
         ->allow_extra_args(false);
     cmd->add_flag("--no-png", line.no_png, "Write no PNG frames");
     cmd->add_flag("--no-mp4", line.no_mp4, "Write no MP4 video");
-    cmd->add_flag("--quiet", run.quiet, "No progress line or summary");
+    cmd->add_flag("--quiet", run.quiet,
+                  "No summary, and no progress unless --progress bar or lines is given");
+    cmd->add_option("--progress", run.progress,
+                    "auto (a bar on a terminal, else a line every 10 s), bar, lines or none")
+        ->check(CLI::IsMember({"auto", "bar", "lines", "none"}));
     cmd->add_flag("--fast-preview", run.fast_preview,
                   "Half-size frames and the fastest x264 preset (ultrafast)");
     cmd->add_option("--backend", run.backend,
@@ -77,15 +188,33 @@ RunOptions run_options(const RunCommandLine& line, const std::string& command_li
     run.png = !line.no_png;
     run.mp4 = !line.no_mp4;
     run.command_line = command_line;
+    run.progress_interval_s = progress_interval();
     return run;
 }
 
-int run_command(const RunOptions& options) {
-    Scene scene = options.scene ? load_scene(*options.scene, options.overrides)
-                                : default_scene(options.overrides);
+int run_command(const RunOptions& given) {
+    RunOptions options = given;
+    const std::optional<nlohmann::json> recorded =
+        options.scene ? read_run_json(*options.scene) : std::nullopt;
+    Scene scene = recorded        ? rerun_scene(*options.scene, *recorded, options)
+                  : options.scene ? load_scene(*options.scene, options.overrides)
+                                  : default_scene(options.overrides);
+    if (options.scene && !recorded)
+        options.scene_file_absolute = fs::absolute(*options.scene).lexically_normal().string();
     if (options.fast_preview)
         make_fast_preview(scene);
-    const fs::path folder = options.out ? *options.out : output_folder(scene);
+    const fs::path folder = recorded      ? rerun_folder(options, scene)
+                            : options.out ? *options.out
+                                          : output_folder(scene);
+    if (options.rerun_of && !options.quiet) {
+        say("sphclip: re-running {} (sphclip {}, commit {}, started {})\n", options.scene->string(),
+            options.rerun_of->sphclip_version, options.rerun_of->git_commit,
+            options.rerun_of->started_utc);
+        if (options.rerun_of->git_commit != build_git_commit())
+            say("sphclip: note: this sphclip is commit {}; a different build may give "
+                "different state hashes\n",
+                build_git_commit());
+    }
     // The GL context before any output: when none can be made, nothing is written.
     std::unique_ptr<GlContext> gl_context;
     if (options.png || options.mp4)

@@ -14,6 +14,13 @@ class App;
 
 namespace sph {
 
+// The run.json a run reproduces (`sphclip run out/x/run.json`), as its
+// run.json "rerun_of" records it.
+struct RerunSource {
+    std::filesystem::path run_json;
+    std::string sphclip_version, git_commit, started_utc; // "unknown" when not recorded
+};
+
 struct RunOptions {
     std::optional<std::filesystem::path> scene; // none: the built-in scene
     std::optional<std::filesystem::path> out;   // none: out/<scene name>/
@@ -23,10 +30,17 @@ struct RunOptions {
     bool png = true;
     bool mp4 = true;
     bool quiet = false;
+    std::string progress = "auto";   // --progress: auto | bar | lines | none (progress.hpp)
+    double progress_interval_s = 10; // between plain progress lines (progress_interval())
     // Half the image size (rounded to even) and the fastest x264 preset.
     bool fast_preview = false;
     std::string backend;      // --backend; empty: the scene's render.backend
     std::string command_line; // recorded in run.json
+    // Set by run_command: the scene file's absolute path (run.json
+    // "scene_file_absolute"; a re-run keeps the recorded one: mesh files are
+    // relative to its folder), and the run.json a re-run reproduces.
+    std::string scene_file_absolute;
+    std::optional<RerunSource> rerun_of;
 };
 
 // `run`'s command line as it is parsed; run_options() makes it RunOptions.

@@ -88,11 +88,14 @@ CaseScore score_dam_break(const ValidationCase& c, const fs::path& run, const fs
                          : scene.block_max[0] - scene.block_min[0];
     const double time_scale = std::sqrt(2 * scene.gravity / a);
     std::vector<SurgeSample> simulated;
-    std::string series = "frame,time_s,T,x_front_m,Z\n";
+    // `time` repeats `time_s` under stats.csv's name for it (docs/outputs.md,
+    // "One name per quantity"); `time_s` stays for the scripts that read it.
+    std::string series = "frame,time_s,T,x_front_m,Z,time\n";
     for (const auto& [f, front] : fronts) {
         const SurgeSample s{times[f] * time_scale, front / a};
         simulated.push_back(s);
-        series += fmt::format("{},{:.6g},{:.6g},{:.6g},{:.6g}\n", f, times[f], s.T, front, s.Z);
+        series += fmt::format("{},{:.6g},{:.6g},{:.6g},{:.6g},{:.9g}\n", f, times[f], s.T, front,
+                              s.Z, times[f]);
     }
     const fs::path reference_path = reference_folder / martin_moyce_file;
     const auto reference = read_surge_reference(reference_path);
@@ -170,6 +173,7 @@ CaseScore score_hydrostatic(const ValidationCase& c, const fs::path& run, const 
                      {"pressure_error_max_pct", r.pressure_error_max_pct},
                      {"density_error_avg_pct", r.density_error_avg_pct},
                      {"speed_max_m_s", r.speed_max},
+                     {"max_speed", r.speed_max}, // stats.csv's name for it
                      {"speed_mean_m_s", r.speed_mean},
                      {"tolerance_pressure_error_rms_pct", hydrostatic_max_pressure_rms_pct},
                      {"tolerance_speed_max_m_s", hydrostatic_max_speed_fraction * wave_speed}};
@@ -218,7 +222,8 @@ CaseScore score_spreading(const ValidationCase& c, const fs::path& run, const fs
         (scene.block_max[0] - scene.block_min[0]) * (scene.block_max[1] - scene.block_min[1]) / 2;
     const double nu = scene.viscosity / scene.rest_density;
     const auto times = frame_times(run);
-    std::string table = "frame,time_s,half_width_m,huppert_m,error_pct\n";
+    // `time`: stats.csv's name, beside the documented `time_s`.
+    std::string table = "frame,time_s,half_width_m,huppert_m,error_pct,time\n";
     double sum = 0, worst = 0;
     std::size_t count = 0;
     for (const auto& file : frames_of(run)) {
@@ -228,8 +233,8 @@ CaseScore score_spreading(const ValidationCase& c, const fs::path& run, const fs
         const double width = spreading_half_width(read_particle_frame(file), scene.spacing);
         const double huppert = huppert_front(scene.gravity, area, nu, times[f]);
         const double error = 100 * (width - huppert) / huppert;
-        table +=
-            fmt::format("{},{:.6g},{:.6g},{:.6g},{:.4g}\n", f, times[f], width, huppert, error);
+        table += fmt::format("{},{:.6g},{:.6g},{:.6g},{:.4g},{:.9g}\n", f, times[f], width, huppert,
+                             error, times[f]);
         if (times[f] >= spreading_from_s - 1e-9) {
             sum += std::abs(error);
             worst = std::max(worst, std::abs(error));

@@ -532,9 +532,9 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     read_keys(r, "solver", solver_keys(), d.solver, s.solver, dim);
     read_keys(r, "watchdog", watchdog_keys(), d.watchdog, s.watchdog, dim);
     read_effects(r, s);
-    read_obstacles(r, dim, file, s.effects.obstacles);
-    read_emitters(r, dim, s.effects.emitters);
-    read_paddles(r, dim, s.effects.paddles);
+    s.effects.obstacles = read_obstacles(r, dim, file);
+    s.effects.emitters = read_list(r, emitter_keys(), dim);
+    s.effects.paddles = read_list(r, paddle_keys(), dim);
     read_keys(r, "render", render_keys(), d.render, s.render, dim);
     check_render_range(r, s);
     read_keys(r, "render.camera", camera_keys(), d.render.camera, s.render.camera, dim);
@@ -826,11 +826,11 @@ json to_json(const Scene& s) {
     if (!r.effects.artificial_viscosity)
         effects["artificial_viscosity"] = {{"alpha", 0.0}};
     if (!r.effects.obstacles.empty())
-        effects["obstacles"] = write_obstacles(r.effects.obstacles, dim);
+        effects["obstacles"] = write_list(obstacle_keys(), r.effects.obstacles, dim);
     if (!r.effects.emitters.empty())
-        effects["emitters"] = write_emitters(r.effects.emitters, dim);
+        effects["emitters"] = write_list(emitter_keys(), r.effects.emitters, dim);
     if (!r.effects.paddles.empty())
-        effects["paddles"] = write_paddles(r.effects.paddles, dim);
+        effects["paddles"] = write_list(paddle_keys(), r.effects.paddles, dim);
 
     json out = write_keys(top_level_keys(), r, dim);
     out["domain"] = write_keys(domain_keys(), r.domain, dim);

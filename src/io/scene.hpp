@@ -4,6 +4,8 @@
 // after Martin & Moyce 1952), filled from a JSON scene file and overridden by
 // `--set KEY=VALUE`. Vectors hold 3 components; a 2D scene uses the first 2.
 
+#include "sph/boundaries/obstacle_keys.hpp"
+#include "sph/boundaries/paddle_keys.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
 #include "sph/effects/gravity.hpp"
 #include "sph/effects/surface_tension.hpp"
@@ -12,6 +14,7 @@
 #include "sph/params.hpp"
 #include "sph/scene_key.hpp"
 #include "sph/solvers/solver_keys.hpp"
+#include "sph/sources/emitter_keys.hpp"
 
 #include <array>
 #include <filesystem>
@@ -27,46 +30,6 @@ struct FluidBlock {
     Vec3 min{0, 0, 0};               // m
     Vec3 max{0.05715, 0.1143, 0.15}; // m
     Vec3 velocity{0, 0, 0};          // m/s, initial velocity of its particles
-};
-
-// A static solid the fluid flows around (effects.obstacles): a box, a
-// sphere (a circle in 2D) or, in 3D, a closed triangle mesh from an OBJ file.
-struct SceneObstacle {
-    ObstacleShape shape = ObstacleShape::box;
-    Vec3 min{0, 0, 0}, max{0, 0, 0}; // m, the box's corners
-    Vec3 centre{0, 0, 0};            // m, the sphere's centre
-    double radius = 0;               // m, the sphere's radius
-    std::string mesh_file;           // the mesh's OBJ file as the scene names it
-    double mesh_scale = 1;           // file units to m
-    Vec3 mesh_offset{0, 0, 0};       // m, added after scaling
-    // Read when the scene loads, in scene coordinates: the file is read once
-    // and the simulation and the renderer share it.
-    std::shared_ptr<const TriangleMesh> mesh;
-};
-
-// A stream of fluid entering through a box (effects.emitters): the box is
-// filled on the fluid's lattice and emitted whole every thickness / |v|
-// seconds between start and end.
-struct SceneEmitter {
-    Vec3 min{0, 0, 0}, max{0, 0, 0}; // m
-    Vec3 velocity{0, 0, 0};          // m/s, not zero
-    double start = 0;                // s
-    double end = 1e300;              // s
-    // m: a disc inlet, the box's sites within this distance of the axis
-    // through its centre along the velocity; none: the whole box.
-    std::optional<double> radius;
-};
-
-// A box that moves with a prescribed motion (effects.paddles): a piston
-// wavemaker. Before `start` and at zero displacement it is at [min, max].
-struct ScenePaddle {
-    Vec3 min{0, 0, 0}, max{0, 0, 0}; // m, the box at rest
-    std::string motion = "sine";     // sine | linear
-    Vec3 amplitude{0, 0, 0};         // m, sine: d = A sin(2 pi (t - start) / period)
-    double period = 1;               // s, sine
-    Vec3 velocity{0, 0, 0};          // m/s, linear: d = V (t - start) until end
-    double start = 0;                // s
-    double end = 1e300;              // s, linear
 };
 
 struct Scene {

@@ -680,14 +680,14 @@ std::string single_precision_obstacle(const Scene& s, KernelKind kernel) {
     if (!solver_capabilities(s.solver.name).single_precision)
         return fmt::format("the single-precision passes are wcsph's; the {} solver computes in "
                            "double",
-                           s.solver.name);
+                           solver_capabilities(s.solver.name).name);
     if (!smooth_at_origin(kernel))
         return "the seed kernel's spiky gradient needs the double passes' rule for coincident "
                "particles; use solver.kernel cubic_spline or wendland_c2";
-    if (s.solver.neighbour_search != "sorted_grid")
+    if (s.solver.neighbour_search != NeighbourSearchKind::sorted_grid)
         return fmt::format("the single-precision passes run on the sorted grid's cells; "
                            "solver.neighbour_search {} lists neighbours for the double passes",
-                           s.solver.neighbour_search);
+                           neighbour_search_names()[static_cast<int>(s.solver.neighbour_search)]);
     std::string problem;
     for_each_effect(s.effects, [&](const auto& effect) {
         if (problem.empty() && effect.capabilities().reads_neighbour_lists)
@@ -755,7 +755,7 @@ Derived derive(const Scene& s) {
         for (const auto& paddle : s.effects.paddles) {
             // The peak speed of its motion: |A| 2 pi / T or |V|.
             Vec3 peak = paddle.velocity;
-            if (paddle.motion == "sine")
+            if (paddle.motion == PaddleMotion::sine)
                 for (int a = 0; a < dim; ++a)
                     peak[a] = paddle.amplitude[a] * 2 * M_PI / paddle.period;
             fastest(peak);

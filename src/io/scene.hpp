@@ -32,6 +32,30 @@ struct FluidBlock {
     Vec3 velocity{0, 0, 0};          // m/s, initial velocity of its particles
 };
 
+// x264's presets (render.video_preset), fastest first: faster ones make
+// larger files at the same quality.
+enum class VideoPreset {
+    ultrafast,
+    superfast,
+    veryfast,
+    faster,
+    fast,
+    medium,
+    slow,
+    slower,
+    veryslow
+};
+inline const std::vector<std::string>& video_preset_names() {
+    static const std::vector<std::string> names{"ultrafast", "superfast", "veryfast",
+                                                "faster",    "fast",      "medium",
+                                                "slow",      "slower",    "veryslow"};
+    return names;
+}
+// The name libx264 knows it by.
+inline const std::string& video_preset_name(VideoPreset preset) {
+    return video_preset_names()[static_cast<std::size_t>(preset)];
+}
+
 struct Scene {
     std::string name = "default";        // the file's stem; the output folder's default name
     std::string file = "built-in scene"; // where it came from, for messages
@@ -94,8 +118,8 @@ struct Scene {
         std::string spheres = "impostor";           // impostor | mesh
         bool cull_buried = true;                    // 3D: skip particles no camera can see
         int video_quality = 20;                     // x264 constant quality (CRF), 0 best - 51
-        std::string video_preset = "veryfast";      // x264 speed/size trade-off
-        std::string backend = "auto";               // auto | egl | osmesa
+        VideoPreset video_preset = VideoPreset::veryfast; // x264 speed/size trade-off
+        std::string backend = "auto";                     // auto | egl | osmesa
         struct Camera {
             std::optional<Vec3> position; // m; default frames the domain
             std::optional<Vec3> target;   // m; default the domain centre

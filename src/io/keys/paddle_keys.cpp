@@ -8,7 +8,7 @@ double check_paddle(const FieldReader& r, const Scene& s, std::size_t i, double 
     const ScenePaddle& o = s.effects.paddles[i];
     const int dim = s.dimension;
     const std::string p = fmt::format("effects.paddles[{}]", i);
-    const bool sine = o.motion == "sine";
+    const bool sine = o.motion == PaddleMotion::sine;
     // How far the motion takes the box from rest over the clip, per axis.
     const double moving = std::max(0.0, std::min(o.end, s.duration) - o.start);
     double sites = 1, interior = 1;

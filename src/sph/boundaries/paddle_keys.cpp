@@ -5,7 +5,7 @@ namespace sph {
 namespace {
 
 bool sine(const ScenePaddle& p) {
-    return p.motion == "sine";
+    return p.motion == PaddleMotion::sine;
 }
 bool linear(const ScenePaddle& p) {
     return !sine(p);
@@ -43,7 +43,7 @@ const KeyList<ScenePaddle>& paddle_keys() {
          .unit = "m",
          .doc = "Upper corner of the paddle's box at rest."},
         {.path = "motion",
-         .field = &S::motion,
+         .field = enum_field<&S::motion>(),
          .doc = "How the paddle moves from start on: sine, displacement amplitude "
                 "sin(2 pi (t - start) / period); linear, velocity (t - start) until "
                 "end, then it stays.",

@@ -175,11 +175,15 @@ std::vector<S> read_list(FieldReader& r, const KeyList<S>& list, int dimension, 
         const std::string p = fmt::format("{}[{}]", list.path, i);
         const bool real = i < count;
         S element = read_keys(r, p, list.keys, fallback, dimension);
+        // An alternative not given is still read (its keys are recorded),
+        // into a scratch copy: alternatives may share fields.
+        S scratch = fallback;
         for (const Alternative<S>& alternative : list.alternatives) {
             const std::string path = p + "." + alternative.key;
-            if (real && dimension < alternative.min_dimension && r.present(path))
+            const bool given = r.present(path);
+            if (real && dimension < alternative.min_dimension && given)
                 r.fail(path, alternative.too_few);
-            read_keys(r, path, alternative.keys, fallback, element, dimension);
+            read_keys(r, path, alternative.keys, fallback, given ? element : scratch, dimension);
         }
         if (!real)
             break;

@@ -4,7 +4,9 @@
 #include "io/png_io.hpp"
 #include "io/scene.hpp"
 #include "sph/stage_times.hpp"
+#include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
+#include "support/text.hpp"
 
 extern "C" {
 #include <libavformat/avformat.h>
@@ -42,38 +44,14 @@ std::vector<std::string> split(const std::string& text, char separator) {
     return parts;
 }
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using sph::test::contains;
+using sph::test::shell_quote;
+using Result = sph::test::ProgramResult;
 
-std::string shell_quote(const std::string& word) {
-    std::string quoted = "'";
-    for (char c : word)
-        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return quoted + "'";
-}
-
-struct Result {
-    int exit_code = -1;
-    std::string output; // stdout and stderr together
-};
-
-// Runs sphclip with `args` in the folder `cwd`. Idle OpenMP threads sleep
-// rather than spin: on a machine whose cores are busy with other work,
-// spinning threads make two-thread runs a hundred times slower.
+// Runs sphclip with `args` in the folder `cwd` (support/run_sphclip.hpp).
 Result sphclip(const TempFolder& tmp, const std::vector<std::string>& args,
                const fs::path& cwd = fs::current_path()) {
-    const fs::path log = tmp / "sphclip.log";
-    std::string command = fmt::format("cd {} && OMP_WAIT_POLICY=passive {}",
-                                      shell_quote(cwd.string()), shell_quote(SPHCLIP_EXE));
-    for (const auto& arg : args)
-        command += fmt::format(" {}", shell_quote(arg));
-    command += fmt::format(" > {} 2>&1", shell_quote(log.string()));
-    const int status = std::system(command.c_str());
-    Result result;
-    result.exit_code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.output = read_text(log);
-    return result;
+    return sph::test::run_sphclip(tmp, args, cwd);
 }
 
 // `sphclip run SCENE --out OUT` writing data outputs only, with `extra` flags.

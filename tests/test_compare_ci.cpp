@@ -7,6 +7,7 @@
 #include "io/png_io.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
+#include "support/text.hpp"
 
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -22,9 +23,7 @@ using sph::test::read_text;
 using sph::test::run_sphclip;
 using sph::test::TempFolder;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using sph::test::contains;
 
 // The first frame of the shipped tank at rest, 1280x720, with the colour
 // bar's range and the backend given: the fluid is one colour, so a change of

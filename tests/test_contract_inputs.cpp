@@ -9,6 +9,7 @@
 #include "io/scene.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
+#include "support/text.hpp"
 
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -27,9 +28,7 @@ using sph::test::run_sphclip;
 using sph::test::TempFolder;
 using sph::test::write_text;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using sph::test::contains;
 
 // The reason read_input_file gives for `path`, or "" when it reads it.
 std::string refusal(const fs::path& path, const sph::InputLimit& limit) {

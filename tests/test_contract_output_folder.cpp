@@ -6,6 +6,7 @@
 
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
+#include "support/text.hpp"
 
 extern "C" {
 #include <libavformat/avformat.h>
@@ -33,9 +34,7 @@ using sph::test::run_sphclip;
 using sph::test::TempFolder;
 using sph::test::write_text;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using sph::test::contains;
 
 // A small 2D tank: 36 particles, quick frames.
 const std::string small_scene = R"({

@@ -3,6 +3,7 @@
 
 #include "io/libav_handles.hpp"
 #include "io/mp4_writer.hpp"
+#include "support/file_size_cap.hpp"
 #include "support/temp_folder.hpp"
 
 extern "C" {
@@ -34,6 +35,7 @@ namespace fs = std::filesystem;
 using sph::Image;
 using sph::Mp4Options;
 using sph::Mp4Writer;
+using sph::test::FileSizeCap;
 using sph::test::TempFolder;
 
 // Makes `folder` the current folder until it goes out of scope.
@@ -418,29 +420,6 @@ TEST_CASE("no frames, no file", "[mp4]") {
     { Mp4Writer destroyed_unfinished(folder / "other.mp4", 64, 48, 30); }
     CHECK(folder.entries().empty());
 }
-
-// Caps the size of any file this process writes, as a full disk would: a
-// write past the cap fails with EFBIG instead of raising SIGXFSZ.
-class FileSizeCap {
-  public:
-    explicit FileSizeCap(rlim_t bytes) {
-        getrlimit(RLIMIT_FSIZE, &saved_);
-        previous_handler_ = std::signal(SIGXFSZ, SIG_IGN);
-        rlimit capped = saved_;
-        capped.rlim_cur = bytes;
-        setrlimit(RLIMIT_FSIZE, &capped);
-    }
-    ~FileSizeCap() {
-        setrlimit(RLIMIT_FSIZE, &saved_);
-        std::signal(SIGXFSZ, previous_handler_);
-    }
-    FileSizeCap(const FileSizeCap&) = delete;
-    FileSizeCap& operator=(const FileSizeCap&) = delete;
-
-  private:
-    rlimit saved_{};
-    void (*previous_handler_)(int) = SIG_DFL;
-};
 
 TEST_CASE("a video that cannot be written completely leaves no file", "[mp4]") {
     if (!Mp4Writer::available())

@@ -3,6 +3,7 @@
 // caller's thread, and times itself.
 
 #include "io/mp4_writer_thread.hpp"
+#include "support/file_size_cap.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>
@@ -25,6 +26,7 @@ using sph::Image;
 using sph::Mp4Options;
 using sph::Mp4Writer;
 using sph::Mp4WriterThread;
+using sph::test::FileSizeCap;
 using sph::test::TempFolder;
 
 // A gradient with a moving disc and a noisy band: motion and texture, so
@@ -66,29 +68,6 @@ void encode_with(EncodeThread thread, const fs::path& path, const Mp4Options& op
         writer.submit(test_frame(width, height, i));
     writer.finish();
 }
-
-// Caps the size of any file this process writes, as a full disk would: a
-// write past the cap fails with EFBIG instead of raising SIGXFSZ.
-class FileSizeCap {
-  public:
-    explicit FileSizeCap(rlim_t bytes) {
-        getrlimit(RLIMIT_FSIZE, &saved_);
-        previous_handler_ = std::signal(SIGXFSZ, SIG_IGN);
-        rlimit capped = saved_;
-        capped.rlim_cur = bytes;
-        setrlimit(RLIMIT_FSIZE, &capped);
-    }
-    ~FileSizeCap() {
-        setrlimit(RLIMIT_FSIZE, &saved_);
-        std::signal(SIGXFSZ, previous_handler_);
-    }
-    FileSizeCap(const FileSizeCap&) = delete;
-    FileSizeCap& operator=(const FileSizeCap&) = delete;
-
-  private:
-    rlimit saved_{};
-    void (*previous_handler_)(int) = SIG_DFL;
-};
 
 } // namespace
 

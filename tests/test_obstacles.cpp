@@ -529,7 +529,7 @@ TEST_CASE("the shipped obstacle scene loads with SPHERIC benchmark 2's geometry"
     REQUIRE(scene.effects.obstacles.size() == 1);
     CHECK(scene.effects.obstacles[0].max[0] - scene.effects.obstacles[0].min[0] == Approx(0.161));
     REQUIRE(scene.effects.gravity);
-    CHECK(scene.solver.name == "dfsph");
+    CHECK(scene.solver.name == SolverKind::dfsph);
     auto sim = make_simulation<2>(scene);
     CHECK(sim.state().size() == 122 * 55);
     CHECK(closest_approach(sim) > 1);

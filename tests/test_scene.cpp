@@ -3,6 +3,7 @@
 
 #include "io/input_error.hpp"
 #include "io/scene.hpp"
+#include "support/text.hpp"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -66,9 +67,7 @@ std::optional<InputError> error_of(const json& scene, const std::vector<Override
     return error_of_text(scene.dump(), overrides);
 }
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
-}
+using sph::test::contains;
 
 } // namespace
 
@@ -306,7 +305,7 @@ TEST_CASE("set overrides take numbers, arrays, objects, strings and list items",
     }
     SECTION("a string, taken as text when it is not JSON") {
         const Scene s = parse(small_2d(), {{"solver.name", "seed"}, {"render.colour", "density"}});
-        CHECK(s.solver.name == "seed");
+        CHECK(s.solver.name == sph::SolverKind::seed);
         CHECK(s.render.colour == "density");
     }
     SECTION("an item of a list, by its index") {

@@ -279,7 +279,7 @@ TEST_CASE("the watchdog allows the speed a compressed start can release", "[simu
 
     // dfsph, incompressible, cannot start from it, and says so.
     scene.watchdog.max_speed.reset();
-    scene.solver.name = "dfsph";
+    scene.solver.name = SolverKind::dfsph;
     auto incompressible = make_simulation<2>(scene, derive(scene));
     CHECK(incompressible.params().watchdog.max_speed == Approx(derived.max_speed));
     try {

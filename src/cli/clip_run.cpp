@@ -149,7 +149,8 @@ class ClipRun {
                 std::move(gl_context), make_render_settings(scene_),
                 options_.png ? folder_ / "frames" : fs::path(),
                 options_.mp4 ? folder_ / "clip.mp4" : fs::path(), scene_.fps,
-                Mp4Options{scene_.render.video_quality, scene_.render.video_preset,
+                Mp4Options{scene_.render.video_quality,
+                           std::string(video_preset_name(scene_.render.video_preset)),
                            encoder_threads},
                 EncodeThread::worker);
         sinks_.push_back(std::make_unique<StatsCsv>(folder_ / "stats.csv"));
@@ -214,11 +215,12 @@ class ClipRun {
     void print_start() const {
         say("sphclip: {} ({}D, {} solver): {} particles, h = {:.4g} m, m = {:.4g} kg, "
             "dt = {:.4g} s, {} frames of {:.4g} s -> {}\n",
-            scene_.name, D, scene_.solver.name, sim_.state().size(), derived_.h, derived_.mass,
-            derived_.dt, frames_, scene_.duration, folder_.string());
+            scene_.name, D, solver_capabilities(scene_.solver.name).name, sim_.state().size(),
+            derived_.h, derived_.mass, derived_.dt, frames_, scene_.duration, folder_.string());
         if (options_.fast_preview)
             say("sphclip: fast preview: half-size frames ({}x{}), x264 preset {}\n",
-                scene_.render.size[0], scene_.render.size[1], scene_.render.video_preset);
+                scene_.render.size[0], scene_.render.size[1],
+                video_preset_name(scene_.render.video_preset));
         if (render_)
             say("sphclip: rendering {}x{} with {} ({}, OpenGL {})\n", scene_.render.size[0],
                 scene_.render.size[1], render_->gl_info().backend, render_->gl_info().renderer,

@@ -208,115 +208,152 @@ std::vector<std::string> png_files(const fs::path& folder) {
     return names;
 }
 
-int compare_folders(const CompareCliOptions& options) {
+// --diff's folder: created, writable, and neither of the folders compared.
+void check_diff_folder(const fs::path& diff_dir, const fs::path& ref_dir,
+                       const fs::path& test_dir) {
+    std::error_code ec;
+    fs::create_directories(diff_dir, ec);
+    if (ec || access(diff_dir.c_str(), W_OK | X_OK) != 0)
+        throw InputError("command line", "--diff",
+                         fmt::format("cannot write difference images into {}: {}",
+                                     diff_dir.string(),
+                                     ec ? ec.message() : "the folder is not writable"));
+    if (fs::equivalent(diff_dir, ref_dir) || fs::equivalent(diff_dir, test_dir))
+        throw InputError("command line", "--diff",
+                         fmt::format("{} is one of the folders compared; writing difference "
+                                     "images there would overwrite its images",
+                                     diff_dir.string()));
+}
+
+// The PNG files of the two folders: in the reference only, in the test only, in both.
+struct FolderPairing {
+    std::vector<std::string> missing, extra, shared;
+};
+
+FolderPairing pair_folders(const fs::path& ref_dir, const fs::path& test_dir) {
+    const std::vector<std::string> refs = png_files(ref_dir), tests = png_files(test_dir);
+    FolderPairing p;
+    std::set_difference(refs.begin(), refs.end(), tests.begin(), tests.end(),
+                        std::back_inserter(p.missing));
+    std::set_difference(tests.begin(), tests.end(), refs.begin(), refs.end(),
+                        std::back_inserter(p.extra));
+    std::set_intersection(refs.begin(), refs.end(), tests.begin(), tests.end(),
+                          std::back_inserter(p.shared));
+    return p;
+}
+
+// One image against its reference: the report's entry, its line, whether they match.
+struct PairOutcome {
+    json pair;
+    std::string line;
+    bool match = false;
+};
+
+PairOutcome compare_pair_in_folders(const CompareCliOptions& options, const std::string& name) {
     const fs::path ref_dir = options.reference, test_dir = options.test;
     const fs::path diff_dir = options.diff;
-    if (!diff_dir.empty()) {
-        std::error_code ec;
-        fs::create_directories(diff_dir, ec);
-        if (ec || access(diff_dir.c_str(), W_OK | X_OK) != 0)
-            throw InputError("command line", "--diff",
-                             fmt::format("cannot write difference images into {}: {}",
-                                         diff_dir.string(),
-                                         ec ? ec.message() : "the folder is not writable"));
-        if (fs::equivalent(diff_dir, ref_dir) || fs::equivalent(diff_dir, test_dir))
-            throw InputError("command line", "--diff",
-                             fmt::format("{} is one of the folders compared; writing difference "
-                                         "images there would overwrite its images",
-                                         diff_dir.string()));
-    }
-    const std::vector<std::string> refs = png_files(ref_dir), tests = png_files(test_dir);
-    std::vector<std::string> missing, extra;
-    std::set_difference(refs.begin(), refs.end(), tests.begin(), tests.end(),
-                        std::back_inserter(missing));
-    std::set_difference(tests.begin(), tests.end(), refs.begin(), refs.end(),
-                        std::back_inserter(extra));
-    std::vector<std::string> shared;
-    std::set_intersection(refs.begin(), refs.end(), tests.begin(), tests.end(),
-                          std::back_inserter(shared));
-
-    json pairs = json::array();
-    std::size_t matched = 0, differing = 0, updated = 0;
-    for (const std::string& name : shared) {
-        json pair{{"name", name}};
-        std::string line;
-        bool match = false;
-        try {
-            const Image reference = read_input((ref_dir / name).string());
-            const Image test = read_input((test_dir / name).string());
-            if (reference.width != test.width || reference.height != test.height) {
-                pair["error"] = fmt::format("the image is {}x{}, the reference {}x{}", test.width,
-                                            test.height, reference.width, reference.height);
-                line = fmt::format("{}: differs: {}", name, pair["error"].get<std::string>());
-            } else {
-                const CompareResult result = compare_images(reference, test, options.thresholds);
-                match = result.match;
-                pair["metrics"] = metrics_json(result);
-                line = fmt::format("{}: {}", name, metrics_line(result));
-                if (!match)
-                    line += fmt::format(" ({})",
-                                        fmt::join(reasons_for(result, options.thresholds), "; "));
-                if (!match && !diff_dir.empty()) {
-                    const fs::path diff = diff_dir / name;
-                    fs::create_directories(diff.parent_path());
-                    write_png(diff, difference_image(reference, test, options.thresholds));
-                    pair["diff"] = diff.string();
-                }
+    PairOutcome out{json{{"name", name}}, {}, false};
+    json& pair = out.pair;
+    try {
+        const Image reference = read_input((ref_dir / name).string());
+        const Image test = read_input((test_dir / name).string());
+        if (reference.width != test.width || reference.height != test.height) {
+            pair["error"] = fmt::format("the image is {}x{}, the reference {}x{}", test.width,
+                                        test.height, reference.width, reference.height);
+            out.line = fmt::format("{}: differs: {}", name, pair["error"].get<std::string>());
+        } else {
+            const CompareResult result = compare_images(reference, test, options.thresholds);
+            out.match = result.match;
+            pair["metrics"] = metrics_json(result);
+            out.line = fmt::format("{}: {}", name, metrics_line(result));
+            if (!out.match)
+                out.line +=
+                    fmt::format(" ({})", fmt::join(reasons_for(result, options.thresholds), "; "));
+            if (!out.match && !diff_dir.empty()) {
+                const fs::path diff = diff_dir / name;
+                fs::create_directories(diff.parent_path());
+                write_png(diff, difference_image(reference, test, options.thresholds));
+                pair["diff"] = diff.string();
             }
-        } catch (const InputError& e) {
-            pair["error"] = e.what();
-            line = fmt::format("{}: differs: {}", name, e.what());
         }
-        pair["match"] = match;
-        if (match)
-            ++matched;
-        else
-            ++differing;
-        if (!match && options.update) {
-            bless(test_dir / name, ref_dir / name);
-            pair["updated"] = true;
-            ++updated;
-        }
-        if (!options.json && (!match || options.update))
-            fmt::print("{}\n", line);
-        pairs.push_back(std::move(pair));
+    } catch (const InputError& e) {
+        pair["error"] = e.what();
+        out.line = fmt::format("{}: differs: {}", name, e.what());
     }
-    if (options.update)
-        for (const std::string& name : extra) {
-            bless(test_dir / name, ref_dir / name);
-            ++updated;
-        }
+    pair["match"] = out.match;
+    return out;
+}
 
-    // Blessing leaves REF as TEST is; references with no test image are
-    // reported, never deleted (they may be a user's).
-    const bool pass = options.update || (differing == 0 && missing.empty() && extra.empty());
+// The counts of a folder comparison.
+struct FolderTally {
+    std::size_t matched = 0, differing = 0, updated = 0;
+};
+
+void print_folder_report(const CompareCliOptions& options, const FolderPairing& p,
+                         const json& pairs, const FolderTally& t) {
+    const fs::path ref_dir = options.reference, test_dir = options.test;
     if (options.json) {
         fmt::print("{}\n", json{{"reference", ref_dir.string()},
                                 {"test", test_dir.string()},
                                 {"limits", limits_json(options.thresholds)},
                                 {"pairs", pairs},
-                                {"missing", missing},
-                                {"extra", extra},
+                                {"missing", p.missing},
+                                {"extra", p.extra},
                                 {"summary",
-                                 {{"compared", shared.size()},
-                                  {"match", matched},
-                                  {"differ", differing},
-                                  {"missing", missing.size()},
-                                  {"extra", extra.size()},
-                                  {"updated", updated}}},
-                                {"match", differing == 0 && missing.empty() && extra.empty()}}
+                                 {{"compared", p.shared.size()},
+                                  {"match", t.matched},
+                                  {"differ", t.differing},
+                                  {"missing", p.missing.size()},
+                                  {"extra", p.extra.size()},
+                                  {"updated", t.updated}}},
+                                {"match", t.differing == 0 && p.missing.empty() && p.extra.empty()}}
                                .dump(2));
     } else {
-        for (const std::string& name : missing)
+        for (const std::string& name : p.missing)
             fmt::print("{}: missing from {}\n", name, test_dir.string());
-        for (const std::string& name : extra)
+        for (const std::string& name : p.extra)
             fmt::print("{}: {} in {}, no reference in {}\n", name,
                        options.update ? "added" : "extra", test_dir.string(), ref_dir.string());
         fmt::print("compared {} pairs: {} match, {} differ; {} missing, {} extra{}\n",
-                   shared.size(), matched, differing, missing.size(), extra.size(),
-                   options.update ? fmt::format("; {} references updated", updated) : "");
+                   p.shared.size(), t.matched, t.differing, p.missing.size(), p.extra.size(),
+                   options.update ? fmt::format("; {} references updated", t.updated) : "");
     }
     std::fflush(stdout);
+}
+
+int compare_folders(const CompareCliOptions& options) {
+    const fs::path ref_dir = options.reference, test_dir = options.test;
+    if (!options.diff.empty())
+        check_diff_folder(options.diff, ref_dir, test_dir);
+    const FolderPairing p = pair_folders(ref_dir, test_dir);
+
+    json pairs = json::array();
+    FolderTally t;
+    for (const std::string& name : p.shared) {
+        PairOutcome outcome = compare_pair_in_folders(options, name);
+        if (outcome.match)
+            ++t.matched;
+        else
+            ++t.differing;
+        if (!outcome.match && options.update) {
+            bless(test_dir / name, ref_dir / name);
+            outcome.pair["updated"] = true;
+            ++t.updated;
+        }
+        if (!options.json && (!outcome.match || options.update))
+            fmt::print("{}\n", outcome.line);
+        pairs.push_back(std::move(outcome.pair));
+    }
+    if (options.update)
+        for (const std::string& name : p.extra) {
+            bless(test_dir / name, ref_dir / name);
+            ++t.updated;
+        }
+
+    // Blessing leaves REF as TEST is; references with no test image are
+    // reported, never deleted (they may be a user's).
+    const bool pass = options.update || (t.differing == 0 && p.missing.empty() && p.extra.empty());
+    print_folder_report(options, p, pairs, t);
     return pass ? exit_success : exit_images_differ;
 }
 

@@ -74,59 +74,70 @@ bool is_frame_file(const std::string& name) {
 
 } // namespace
 
-OutputFolder::OutputFolder(fs::path folder) : folder_(std::move(folder)) {
-    std::error_code ec;
-    fs::create_directories(folder_, ec);
-    if (ec || !fs::is_directory(folder_))
-        throw InputError("command line", "--out",
-                         fmt::format("cannot create the output folder {}: {}", folder_.string(),
-                                     ec ? ec.message() : "a file of that name exists"));
-    if (::access(folder_.c_str(), W_OK | X_OK) != 0)
-        throw InputError("command line", "--out",
-                         fmt::format("the output folder {} is not writable", folder_.string()));
+namespace {
 
-    // The lock first: what follows must not race another run's.
-    const fs::path lock = folder_ / lock_name;
-    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (lock_fd_ < 0)
-        refuse(folder_,
+// The folder made where it is missing, and writable.
+void create_folder(const fs::path& folder) {
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec || !fs::is_directory(folder))
+        throw InputError("command line", "--out",
+                         fmt::format("cannot create the output folder {}: {}", folder.string(),
+                                     ec ? ec.message() : "a file of that name exists"));
+    if (::access(folder.c_str(), W_OK | X_OK) != 0)
+        throw InputError("command line", "--out",
+                         fmt::format("the output folder {} is not writable", folder.string()));
+}
+
+// Opens and locks folder/.sphclip.lock, with this process's pid in it; refuses
+// a folder another run holds. Returns the lock file's descriptor.
+int lock_folder(const fs::path& folder) {
+    const fs::path lock = folder / lock_name;
+    int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0)
+        refuse(folder,
                fmt::format("cannot open its lock file {}: {}", lock_name,
                            errno == ELOOP ? "it is a symbolic link" : std::strerror(errno)));
-    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
         if (errno == EWOULDBLOCK) {
-            const std::string pid = holder_of(lock_fd_);
-            ::close(lock_fd_);
-            lock_fd_ = -1;
-            refuse(folder_, fmt::format("another sphclip run (pid {}) is writing to this folder; "
-                                        "wait for it to end or give another --out",
-                                        pid));
+            const std::string pid = holder_of(fd);
+            ::close(fd);
+            fd = -1;
+            refuse(folder, fmt::format("another sphclip run (pid {}) is writing to this folder; "
+                                       "wait for it to end or give another --out",
+                                       pid));
         }
         // A filesystem without locks: runs are not kept apart there.
     }
     const std::string pid = fmt::format("{}\n", ::getpid());
-    if (::ftruncate(lock_fd_, 0) != 0 ||
-        ::pwrite(lock_fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size())) {
+    if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) != ssize_t(pid.size())) {
         // The pid is for the message of a refused run only; the lock holds.
     }
+    return fd;
+}
 
+// Refuses a link or an entry of the wrong type under any name a run writes.
+// Returns whether outputs of an earlier run (or a user's) are there.
+bool check_output_names(const fs::path& folder) {
+    std::error_code ec;
     // Every name a run writes: no link, no entry of the wrong type.
     bool earlier_outputs = false;
     for (const auto& [name, is_folder] : output_names) {
         struct stat info {};
-        const fs::path path = folder_ / name;
+        const fs::path path = folder / name;
         for (const fs::path& p : {path, fs::path(path.string() + ".partial")}) {
             if (!look(p, info))
                 continue;
             if (S_ISLNK(info.st_mode))
-                refuse(folder_, fmt::format("{} is a symbolic link; sphclip never writes through "
-                                            "a link in its output folder: remove it or give "
-                                            "another --out",
-                                            p.filename().string()));
+                refuse(folder, fmt::format("{} is a symbolic link; sphclip never writes through "
+                                           "a link in its output folder: remove it or give "
+                                           "another --out",
+                                           p.filename().string()));
             if (p == path && is_folder != S_ISDIR(info.st_mode))
-                refuse(folder_, fmt::format("{} is {} where a run writes {}: remove it or give "
-                                            "another --out",
-                                            name, S_ISDIR(info.st_mode) ? "a folder" : "a file",
-                                            is_folder ? "a folder" : "a file"));
+                refuse(folder, fmt::format("{} is {} where a run writes {}: remove it or give "
+                                           "another --out",
+                                           name, S_ISDIR(info.st_mode) ? "a folder" : "a file",
+                                           is_folder ? "a folder" : "a file"));
         }
         if (!look(path, info))
             continue;
@@ -139,36 +150,53 @@ OutputFolder::OutputFolder(fs::path folder) : folder_(std::move(folder)) {
             if (!is_frame_file(entry.path().filename().string()) || !look(entry.path(), inner))
                 continue;
             if (S_ISLNK(inner.st_mode) || !S_ISREG(inner.st_mode))
-                refuse(folder_, fmt::format("{}/{} is {}; sphclip writes only regular files "
-                                            "there: remove it or give another --out",
-                                            name, entry.path().filename().string(),
-                                            S_ISLNK(inner.st_mode) ? "a symbolic link"
-                                                                   : "not a regular file"));
+                refuse(folder, fmt::format("{}/{} is {}; sphclip writes only regular files "
+                                           "there: remove it or give another --out",
+                                           name, entry.path().filename().string(),
+                                           S_ISLNK(inner.st_mode) ? "a symbolic link"
+                                                                  : "not a regular file"));
             earlier_outputs = true;
         }
     }
-    if (!earlier_outputs)
-        return;
+    return earlier_outputs;
+}
+
+// Removes an earlier sphclip run's outputs (refusing a folder whose outputs
+// no sphclip run made). Returns what was replaced, for the run's message.
+std::vector<std::string> remove_earlier_outputs(const fs::path& folder) {
+    std::error_code ec;
+    std::vector<std::string> replaced;
     // Outputs are there: an earlier run's, or a user's.
-    if (!written_by_sphclip(folder_ / "run.json"))
-        refuse(folder_, "it holds files with the names a run writes (frames/frame_*, stats.csv, "
-                        "run.json, clip.mp4, particles...) but no run.json of a sphclip run: "
-                        "sphclip does not overwrite files it did not make; give another --out");
+    if (!written_by_sphclip(folder / "run.json"))
+        refuse(folder, "it holds files with the names a run writes (frames/frame_*, stats.csv, "
+                       "run.json, clip.mp4, particles...) but no run.json of a sphclip run: "
+                       "sphclip does not overwrite files it did not make; give another --out");
     for (const auto& [name, is_folder] : output_names) {
-        const fs::path path = folder_ / name;
+        const fs::path path = folder / name;
         if (is_folder) {
             std::size_t removed = 0;
             for (const auto& entry : fs::directory_iterator(path, ec))
                 if (is_frame_file(entry.path().filename().string()) && fs::remove(entry.path(), ec))
                     ++removed;
             if (removed > 0)
-                replaced_.push_back(fmt::format("{}/ ({} files)", name, removed));
+                replaced.push_back(fmt::format("{}/ ({} files)", name, removed));
             continue;
         }
         for (const fs::path& p : {path, fs::path(path.string() + ".partial")})
             if (p.filename() != "run.json" && fs::remove(p, ec))
-                replaced_.push_back(p.filename().string());
+                replaced.push_back(p.filename().string());
     }
+    return replaced;
+}
+
+} // namespace
+
+OutputFolder::OutputFolder(fs::path folder) : folder_(std::move(folder)) {
+    create_folder(folder_);
+    // The lock first: what follows must not race another run's.
+    lock_fd_ = lock_folder(folder_);
+    if (check_output_names(folder_))
+        replaced_ = remove_earlier_outputs(folder_);
 }
 
 OutputFolder::~OutputFolder() {

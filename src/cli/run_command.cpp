@@ -31,7 +31,7 @@ namespace {
 void make_fast_preview(Scene& scene) {
     for (int& side : scene.render.size)
         side = 2 * std::max(1, (side + 2) / 4);
-    scene.render.video_preset = "ultrafast";
+    scene.render.video_preset = VideoPreset::ultrafast;
 }
 
 // A run.json that sphclip wrote: an object with sphclip_version and a scene

@@ -127,6 +127,8 @@ S read_keys(FieldReader& r, const std::string& prefix, const KeyTable<S>& table,
 template <class S>
 void write_keys(json& node, const KeyTable<S>& table, const S& value, int dimension) {
     for (const Key<S>& key : table) {
+        if (key.applies && !key.applies(value))
+            continue;
         json& out = key.path.empty() ? node : node[key.path];
         const int n = vector_size(key.size, dimension);
         auto vector = [n](const Vec3& v) {
@@ -158,6 +160,85 @@ json write_keys(const KeyTable<S>& table, const S& value, int dimension) {
     json node = json::object();
     write_keys(node, table, value, dimension);
     return node;
+}
+
+// Reads the list `list` (absent: empty). Each element's keys are read and
+// checked, then `finish(element, path)` does what needs more than the keys
+// (a mesh's file), before the next element is read. With no list the keys of
+// one element are still read, for the documentation.
+template <class S, class Finish>
+std::vector<S> read_list(FieldReader& r, const KeyList<S>& list, int dimension, Finish&& finish) {
+    const std::size_t count = r.list(list.path, "none", list.doc.c_str());
+    std::vector<S> out;
+    const S fallback{};
+    for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i) {
+        const std::string p = fmt::format("{}[{}]", list.path, i);
+        const bool real = i < count;
+        S element = read_keys(r, p, list.keys, fallback, dimension);
+        // An alternative not given is still read (its keys are recorded),
+        // into a scratch copy: alternatives may share fields.
+        S scratch = fallback;
+        for (const Alternative<S>& alternative : list.alternatives) {
+            const std::string path = p + "." + alternative.key;
+            const bool given = r.present(path);
+            if (real && dimension < alternative.min_dimension && given)
+                r.fail(path, alternative.too_few);
+            read_keys(r, path, alternative.keys, fallback, given ? element : scratch, dimension);
+        }
+        if (!real)
+            break;
+        std::string prefix = p; // where the element's keys are: p, or its alternative's
+        const KeyTable<S>* keys = &list.keys;
+        std::string missing;
+        if (!list.alternatives.empty()) {
+            const Alternative<S>* chosen = nullptr;
+            int given = 0;
+            for (const Alternative<S>& alternative : list.alternatives)
+                if (r.present(p + "." + alternative.key) && given++ == 0)
+                    chosen = &alternative;
+            if (given != 1)
+                r.fail(p, given > 1 ? list.several : list.none);
+            prefix = p + "." + chosen->key;
+            if (const json* v = r.find(prefix); !v->is_object())
+                r.fail(prefix, "expected an object, got " + describe(*v));
+            list.which.set(element, chosen->value);
+            keys = &chosen->keys;
+            missing = chosen->missing;
+        }
+        for (const Key<S>& key : *keys)
+            if (key.required && !r.present(key_path(prefix, key.path)))
+                r.fail(key_path(prefix, key.path), missing);
+        for (const Key<S>& key : list.keys)
+            if (key.applies && !key.applies(element) && r.present(key_path(p, key.path)))
+                r.fail(key_path(p, key.path), key.refused);
+        if (list.check)
+            if (const auto problem = list.check(element, dimension))
+                r.fail(key_path(p, problem->path), problem->problem);
+        finish(element, prefix);
+        out.push_back(std::move(element));
+    }
+    return out;
+}
+
+template <class S>
+std::vector<S> read_list(FieldReader& r, const KeyList<S>& list, int dimension) {
+    return read_list(r, list, dimension, [](S&, const std::string&) {});
+}
+
+// The elements as read_list reads them back; an absent value (null) is left out.
+template <class S>
+json write_list(const KeyList<S>& list, const std::vector<S>& elements, int dimension) {
+    json out = json::array();
+    for (const S& element : elements) {
+        json node = write_keys(list.keys, element, dimension);
+        for (const Alternative<S>& alternative : list.alternatives)
+            if (list.which.get(element) == alternative.value)
+                node[alternative.key] = write_keys(alternative.keys, element, dimension);
+        for (auto it = node.begin(); it != node.end();)
+            it = it->is_null() ? node.erase(it) : std::next(it);
+        out.push_back(std::move(node));
+    }
+    return out;
 }
 
 } // namespace sph

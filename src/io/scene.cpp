@@ -248,48 +248,31 @@ std::optional<S> read_effect(FieldReader& r, const std::string& name, const KeyT
 }
 
 // The effects with their keys declared in sph/effects/. A scene that gives an
-// `effects` object gets exactly the effects it lists, with two exceptions:
-// viscosity is a property of the fluid, so a material.viscosity above 0 gets
-// the solver's model without naming the effect (the seed's term for seed,
-// Morris's for the others), and wcsph keeps solver.artificial_viscosity
-// unless effects.artificial_viscosity says otherwise. A coefficient of 0
-// means the effect is not in the step.
+// `effects` object gets exactly the effects it lists, but for those that the
+// rest of the scene implies (Settings::implied: viscosity from
+// material.viscosity, wcsph's solver.artificial_viscosity) unless their key
+// says otherwise; an effect whose values turn it off (a coefficient of 0) is
+// not in the step.
 void read_effects(FieldReader& r, Scene& s) {
     const bool listed = r.present("effects");
-    const SolverCapabilities& solver = solver_capabilities(s.solver.name);
-    // The values of keys an effect leaves out: the settings' own defaults,
-    // but for mu and alpha, which the scene gives elsewhere.
-    const ViscositySettings implied_viscosity{solver.viscosity_model, s.material.viscosity};
-    const ArtificialViscositySettings solver_alpha{s.solver.artificial_viscosity};
-    auto fallback = [&]<class S>(const S&) {
-        if constexpr (std::is_same_v<S, ViscositySettings>)
-            return implied_viscosity;
-        else if constexpr (std::is_same_v<S, ArtificialViscositySettings>)
-            return solver_alpha;
-        else
-            return S{};
-    };
+    const EffectScene scene{s.solver, solver_capabilities(s.solver.name), s.material.viscosity};
     for_each_registered_effect([&](const auto& entry) {
         using S = typename std::decay_t<decltype(entry)>::Settings;
         auto& effect = s.effects.*entry.field;
-        const auto given = read_effect(r, S::key, entry.keys(), fallback(S{}), s.dimension);
+        const S fallback = effect_defaults<S>(scene);
+        const auto given = read_effect(r, S::key, entry.keys(), fallback, s.dimension);
         if (given || listed)
             effect = given;
+        if (effect && !effect_on(*effect))
+            effect.reset();
+        else if (!r.present(std::string("effects.") + S::key) && effect_implied<S>(scene) &&
+                 effect_on(fallback))
+            effect = fallback;
     });
-    // Off at a coefficient of 0, and on without the key where the fluid or the solver says so.
-    if (s.effects.viscosity && !(s.effects.viscosity->mu > 0))
-        s.effects.viscosity.reset();
-    else if (!r.present("effects.viscosity") && implied_viscosity.mu > 0)
-        s.effects.viscosity = implied_viscosity;
-    if (s.effects.artificial_viscosity && !(s.effects.artificial_viscosity->alpha > 0))
-        s.effects.artificial_viscosity.reset();
-    else if (!r.present("effects.artificial_viscosity") && solver.default_artificial_viscosity &&
-             solver_alpha.alpha > 0)
-        s.effects.artificial_viscosity = solver_alpha;
-    if (s.effects.xsph && s.effects.xsph->epsilon > 1)
-        r.fail("effects.xsph.epsilon",
-               fmt::format("{} is above 1: XSPH would overshoot the neighbours' mean velocity",
-                           s.effects.xsph->epsilon));
+    for_each_effect(s.effects, [&](const auto& effect) {
+        if (const auto problem = effect_problem(effect))
+            r.fail(key_path(std::string("effects.") + effect.key, problem->path), problem->problem);
+    });
 }
 
 void check_render_range(const FieldReader& r, const Scene& s) {
@@ -532,9 +515,9 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     read_keys(r, "solver", solver_keys(), d.solver, s.solver, dim);
     read_keys(r, "watchdog", watchdog_keys(), d.watchdog, s.watchdog, dim);
     read_effects(r, s);
-    read_obstacles(r, dim, file, s.effects.obstacles);
-    read_emitters(r, dim, s.effects.emitters);
-    read_paddles(r, dim, s.effects.paddles);
+    s.effects.obstacles = read_obstacles(r, dim, file);
+    s.effects.emitters = read_list(r, emitter_keys(), dim);
+    s.effects.paddles = read_list(r, paddle_keys(), dim);
     read_keys(r, "render", render_keys(), d.render, s.render, dim);
     check_render_range(r, s);
     read_keys(r, "render.camera", camera_keys(), d.render.camera, s.render.camera, dim);
@@ -680,14 +663,14 @@ std::string single_precision_obstacle(const Scene& s, KernelKind kernel) {
     if (!solver_capabilities(s.solver.name).single_precision)
         return fmt::format("the single-precision passes are wcsph's; the {} solver computes in "
                            "double",
-                           s.solver.name);
+                           solver_capabilities(s.solver.name).name);
     if (!smooth_at_origin(kernel))
         return "the seed kernel's spiky gradient needs the double passes' rule for coincident "
                "particles; use solver.kernel cubic_spline or wendland_c2";
-    if (s.solver.neighbour_search != "sorted_grid")
+    if (s.solver.neighbour_search != NeighbourSearchKind::sorted_grid)
         return fmt::format("the single-precision passes run on the sorted grid's cells; "
                            "solver.neighbour_search {} lists neighbours for the double passes",
-                           s.solver.neighbour_search);
+                           neighbour_search_names()[static_cast<int>(s.solver.neighbour_search)]);
     std::string problem;
     for_each_effect(s.effects, [&](const auto& effect) {
         if (problem.empty() && effect.capabilities().reads_neighbour_lists)
@@ -755,7 +738,7 @@ Derived derive(const Scene& s) {
         for (const auto& paddle : s.effects.paddles) {
             // The peak speed of its motion: |A| 2 pi / T or |V|.
             Vec3 peak = paddle.velocity;
-            if (paddle.motion == "sine")
+            if (paddle.motion == PaddleMotion::sine)
                 for (int a = 0; a < dim; ++a)
                     peak[a] = paddle.amplitude[a] * 2 * M_PI / paddle.period;
             fastest(peak);
@@ -816,21 +799,18 @@ json to_json(const Scene& s) {
 
     json effects = json::object();
     for_each_registered_effect([&](const auto& entry) {
+        using S = typename std::decay_t<decltype(entry)>::Settings;
         if (const auto& settings = r.effects.*entry.field)
-            effects[settings->key] = write_keys(entry.keys(), *settings, dim);
+            effects[S::key] = write_keys(entry.keys(), *settings, dim);
+        else if constexpr (requires { S::off_key; })
+            effects[S::key] = {{S::off_key, 0.0}}; // read back, nothing implies it
     });
-    // Both always written, 0 when off: read back, an absent key would let
-    // material.viscosity or wcsph's solver.artificial_viscosity turn them on.
-    if (!r.effects.viscosity)
-        effects["viscosity"] = {{"mu", 0.0}};
-    if (!r.effects.artificial_viscosity)
-        effects["artificial_viscosity"] = {{"alpha", 0.0}};
     if (!r.effects.obstacles.empty())
-        effects["obstacles"] = write_obstacles(r.effects.obstacles, dim);
+        effects["obstacles"] = write_list(obstacle_keys(), r.effects.obstacles, dim);
     if (!r.effects.emitters.empty())
-        effects["emitters"] = write_emitters(r.effects.emitters, dim);
+        effects["emitters"] = write_list(emitter_keys(), r.effects.emitters, dim);
     if (!r.effects.paddles.empty())
-        effects["paddles"] = write_paddles(r.effects.paddles, dim);
+        effects["paddles"] = write_list(paddle_keys(), r.effects.paddles, dim);
 
     json out = write_keys(top_level_keys(), r, dim);
     out["domain"] = write_keys(domain_keys(), r.domain, dim);

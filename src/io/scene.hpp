@@ -4,6 +4,8 @@
 // after Martin & Moyce 1952), filled from a JSON scene file and overridden by
 // `--set KEY=VALUE`. Vectors hold 3 components; a 2D scene uses the first 2.
 
+#include "sph/boundaries/obstacle_keys.hpp"
+#include "sph/boundaries/paddle_keys.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
 #include "sph/effects/gravity.hpp"
 #include "sph/effects/surface_tension.hpp"
@@ -12,6 +14,7 @@
 #include "sph/params.hpp"
 #include "sph/scene_key.hpp"
 #include "sph/solvers/solver_keys.hpp"
+#include "sph/sources/emitter_keys.hpp"
 
 #include <array>
 #include <filesystem>
@@ -29,45 +32,29 @@ struct FluidBlock {
     Vec3 velocity{0, 0, 0};          // m/s, initial velocity of its particles
 };
 
-// A static solid the fluid flows around (effects.obstacles): a box, a
-// sphere (a circle in 2D) or, in 3D, a closed triangle mesh from an OBJ file.
-struct SceneObstacle {
-    ObstacleShape shape = ObstacleShape::box;
-    Vec3 min{0, 0, 0}, max{0, 0, 0}; // m, the box's corners
-    Vec3 centre{0, 0, 0};            // m, the sphere's centre
-    double radius = 0;               // m, the sphere's radius
-    std::string mesh_file;           // the mesh's OBJ file as the scene names it
-    double mesh_scale = 1;           // file units to m
-    Vec3 mesh_offset{0, 0, 0};       // m, added after scaling
-    // Read when the scene loads, in scene coordinates: the file is read once
-    // and the simulation and the renderer share it.
-    std::shared_ptr<const TriangleMesh> mesh;
+// x264's presets (render.video_preset), fastest first: faster ones make
+// larger files at the same quality.
+enum class VideoPreset {
+    ultrafast,
+    superfast,
+    veryfast,
+    faster,
+    fast,
+    medium,
+    slow,
+    slower,
+    veryslow
 };
-
-// A stream of fluid entering through a box (effects.emitters): the box is
-// filled on the fluid's lattice and emitted whole every thickness / |v|
-// seconds between start and end.
-struct SceneEmitter {
-    Vec3 min{0, 0, 0}, max{0, 0, 0}; // m
-    Vec3 velocity{0, 0, 0};          // m/s, not zero
-    double start = 0;                // s
-    double end = 1e300;              // s
-    // m: a disc inlet, the box's sites within this distance of the axis
-    // through its centre along the velocity; none: the whole box.
-    std::optional<double> radius;
-};
-
-// A box that moves with a prescribed motion (effects.paddles): a piston
-// wavemaker. Before `start` and at zero displacement it is at [min, max].
-struct ScenePaddle {
-    Vec3 min{0, 0, 0}, max{0, 0, 0}; // m, the box at rest
-    std::string motion = "sine";     // sine | linear
-    Vec3 amplitude{0, 0, 0};         // m, sine: d = A sin(2 pi (t - start) / period)
-    double period = 1;               // s, sine
-    Vec3 velocity{0, 0, 0};          // m/s, linear: d = V (t - start) until end
-    double start = 0;                // s
-    double end = 1e300;              // s, linear
-};
+inline const std::vector<std::string>& video_preset_names() {
+    static const std::vector<std::string> names{"ultrafast", "superfast", "veryfast",
+                                                "faster",    "fast",      "medium",
+                                                "slow",      "slower",    "veryslow"};
+    return names;
+}
+// The name libx264 knows it by.
+inline const std::string& video_preset_name(VideoPreset preset) {
+    return video_preset_names()[static_cast<std::size_t>(preset)];
+}
 
 struct Scene {
     std::string name = "default";        // the file's stem; the output folder's default name
@@ -131,8 +118,8 @@ struct Scene {
         std::string spheres = "impostor";           // impostor | mesh
         bool cull_buried = true;                    // 3D: skip particles no camera can see
         int video_quality = 20;                     // x264 constant quality (CRF), 0 best - 51
-        std::string video_preset = "veryfast";      // x264 speed/size trade-off
-        std::string backend = "auto";               // auto | egl | osmesa
+        VideoPreset video_preset = VideoPreset::veryfast; // x264 speed/size trade-off
+        std::string backend = "auto";                     // auto | egl | osmesa
         struct Camera {
             std::optional<Vec3> position; // m; default frames the domain
             std::optional<Vec3> target;   // m; default the domain centre

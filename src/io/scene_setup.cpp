@@ -40,7 +40,7 @@ std::vector<Paddle<D>> make_paddles(const Scene& scene) {
     for (const auto& o : scene.effects.paddles) {
         Paddle<D> p;
         p.box = {to_vec<D>(o.min), to_vec<D>(o.max)};
-        p.motion = o.motion == "linear" ? PaddleMotion::linear : PaddleMotion::sine;
+        p.motion = o.motion;
         p.amplitude = to_vec<D>(o.amplitude);
         p.period = o.period;
         p.velocity = to_vec<D>(o.velocity);

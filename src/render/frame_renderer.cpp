@@ -1,6 +1,7 @@
 #include "render/frame_renderer.hpp"
 
 #include "render/camera.hpp"
+#include "render/frame_end.hpp"
 #include "render/gl_resources.hpp"
 #include "render/overlay.hpp"
 #include "render/particle_batch.hpp"
@@ -70,19 +71,8 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // The spheres, depth-tested with each other and with the solids.
     p.spheres.upload(p.batch);
     p.spheres.draw(p.batch, camera);
-    // Mesh obstacles, the domain box, the other obstacles and the paddles.
-    p.scenery.draw(p.painter, camera, frame.time);
-    // Colour bar, its labels and the caption, over everything.
-    p.overlay.draw(p.painter, frame);
-    glFinish();
-    timings_.draw_seconds = seconds_since(start);
-
-    // The samples resolved and read back, rows top-down.
-    const auto readback_start = Clock::now();
-    Image image = p.target.read();
-    gl::check_gl("frame rendering");
-    timings_.readback_seconds = seconds_since(readback_start);
-    return image;
+    // The solids and the overlay, then the pixels read back.
+    return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, start, timings_);
 }
 
 } // namespace sph

@@ -15,6 +15,9 @@ namespace sph {
 
 enum class Integrator { symplectic_euler, verlet };
 
+// The solvers (solver.name), in the order of solver_names().
+enum class SolverKind { seed, wcsph, dfsph };
+
 // The arithmetic of wcsph's density and pressure passes: float over grid
 // cells (sph/single_precision/cell_passes.hpp) or double over neighbour lists.
 enum class Precision { single, double_precision };

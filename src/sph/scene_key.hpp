@@ -51,10 +51,52 @@ struct Key {
     std::string absent{};               // what an absent key means, where no value says it
     VectorSize size = VectorSize::dimension;
     bool nullable = false; // a value that may be null (absent): an effect that is off
+    // In a list's element: a key without a default, that must be given
+    // (`absent` says "required" for the docs).
+    bool required = false;
+    // A key for some values only (a paddle's motion's): given where it does
+    // not apply, it is refused with `refused`, and it is not written there.
+    bool (*applies)(const S&) = nullptr;
+    std::string refused{};
 };
 
 template <class S>
 using KeyTable = std::vector<Key<S>>;
+
+// What a declared check finds wrong with a value: the key below the value's
+// path (empty: the value itself) and the problem.
+struct KeyProblem {
+    std::string path;
+    std::string problem;
+};
+
+// One of the objects a list's element may be, under its own key:
+// {"box": {...}} or {"sphere": {...}}. Its keys' paths are below `key`.
+template <class S>
+struct Alternative {
+    std::string key;
+    int value = 0; // of the element's selector (KeyList::which)
+    KeyTable<S> keys{};
+    std::string missing{}; // the problem when a required key is absent
+    int min_dimension = 2; // in fewer dimensions it is refused with...
+    std::string too_few{}; // ...this problem
+};
+
+// A key whose value is a list of objects (effects.emitters), each read with
+// `keys` and, where there are alternatives, as exactly one of them. Its
+// default is the empty list.
+template <class S>
+struct KeyList {
+    std::string path; // the whole path, "effects.emitters"
+    std::string doc;
+    KeyTable<S> keys{};
+    std::vector<Alternative<S>> alternatives{};
+    EnumField<S> which{};  // the alternative an element is, by Alternative::value
+    std::string several{}; // the problem when an element gives more than one alternative
+    std::string none{};    // ... and when it gives none
+    // The element's keys against each other, once they are read.
+    std::optional<KeyProblem> (*check)(const S&, int dimension) = nullptr;
+};
 
 template <class P>
 struct MemberOf;

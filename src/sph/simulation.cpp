@@ -115,7 +115,7 @@ void Simulation<D>::reorder_particles() {
     std::span<const std::uint32_t> order = search_->cell_order(state_.position, params_.h);
     if (order.size() != state_.size()) {
         if (!sorter_)
-            sorter_ = make_neighbour_search<D>("sorted_grid");
+            sorter_ = make_neighbour_search<D>(NeighbourSearchKind::sorted_grid);
         order = sorter_->cell_order(state_.position, params_.h);
     }
     state_.permute(order, permute_scratch_);

@@ -1,6 +1,7 @@
 #include "render_variants.hpp"
 
 #include "render/camera.hpp"
+#include "render/frame_end.hpp"
 #include "render/gl_resources.hpp"
 #include "render/overlay.hpp"
 #include "render/particle_batch.hpp"
@@ -159,16 +160,7 @@ Image VariantRenderer::render(const Snapshot& frame) {
             p.spheres.draw_outlines(Outline::triangle, p.spheres.first(flat_group), flat);
         }
     }
-    p.scenery.draw(p.painter, camera, frame.time);
-    p.overlay.draw(p.painter, frame);
-    glFinish();
-    timings_.draw_seconds = seconds_since(start);
-
-    const auto readback_start = Clock::now();
-    Image image = p.target.read();
-    gl::check_gl("frame rendering");
-    timings_.readback_seconds = seconds_since(readback_start);
-    return image;
+    return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, start, timings_);
 }
 
 } // namespace sph

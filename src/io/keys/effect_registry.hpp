@@ -6,6 +6,7 @@
 // and make_effects walk this list. docs/adding-an-effect.md has the recipe.
 
 #include "io/scene.hpp"
+#include "sph/solvers/solver.hpp"
 
 #include <tuple>
 
@@ -27,6 +28,47 @@ inline constexpr std::tuple registered_effects{
     RegisteredEffect<SurfaceTensionSettings>{&Scene::Effects::surface_tension,
                                              surface_tension_keys},
 };
+
+// The rest of the scene, read before the effects, that an effect's defaults
+// may follow (Settings::defaults and Settings::implied).
+struct EffectScene {
+    const SolverSettings& solver;
+    const SolverCapabilities& capabilities; // the solver's
+    double material_viscosity;              // Pa.s
+};
+
+// What an effect's settings may declare, and what holds where they do not:
+// defaults(scene), the values of the keys a scene leaves out (S{});
+// implied(scene), on without its key (never); on(), on with these values
+// (always); problem(), the values against each other (none).
+template <class S>
+S effect_defaults(const EffectScene& scene) {
+    if constexpr (requires { S::defaults(scene); })
+        return S::defaults(scene);
+    else
+        return S{};
+}
+template <class S>
+bool effect_implied(const EffectScene& scene) {
+    if constexpr (requires { S::implied(scene); })
+        return S::implied(scene);
+    else
+        return false;
+}
+template <class S>
+bool effect_on(const S& settings) {
+    if constexpr (requires { settings.on(); })
+        return settings.on();
+    else
+        return true;
+}
+template <class S>
+std::optional<KeyProblem> effect_problem(const S& settings) {
+    if constexpr (requires { settings.problem(); })
+        return settings.problem();
+    else
+        return std::nullopt;
+}
 
 // Calls f(entry) for every registered effect, in order.
 template <class F>

@@ -1,110 +1,29 @@
-// The effects.obstacles family's keys, read, checked and written by hand: a list of one-of shapes.
-// (Their declarations move next to the family once it has its own folder.)
+// effects.obstacles: the keys are declared in sph/boundaries/obstacle_keys.cpp;
+// here a mesh's file is read, and each obstacle is checked against the scene.
+#include "io/key_walk.hpp"
 #include "io/keys/scene_keys.hpp"
 #include "io/obj_mesh.hpp"
 #include "io/scene_paths.hpp"
 
 namespace sph {
 
-void read_obstacles(FieldReader& r, int dim, const std::string& file,
-                    std::vector<SceneObstacle>& obstacles) {
-    const std::size_t count =
-        r.list("effects.obstacles", "none",
-               "Static obstacles the fluid flows around (wcsph, dfsph): each {\"box\": {...}}, "
-               "{\"sphere\": {...}} or (3D) {\"mesh\": {...}}, made of boundary particles.");
-    for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i) {
-        const std::string p = fmt::format("effects.obstacles[{}]", i);
-        const auto min = r.optional_vector(p + ".box.min", dim, "m", "required",
-                                           "Lower corner of a box obstacle.");
-        const auto max = r.optional_vector(p + ".box.max", dim, "m", "required",
-                                           "Upper corner of a box obstacle.");
-        const auto centre = r.optional_vector(p + ".sphere.centre", dim, "m", "required",
-                                              "Centre of a sphere obstacle (a circle in 2D).");
-        const auto radius = r.optional_number(p + ".sphere.radius", "m", "required",
-                                              "Radius of a sphere obstacle.", Bound::positive);
-        const json* box = r.find(p + ".box");
-        const json* sphere = r.find(p + ".sphere");
-        const json* mesh = r.find(p + ".mesh");
-        if (i < count && mesh && dim == 2)
-            r.fail(p + ".mesh", "a mesh obstacle is a 3D solid; a 2D scene has boxes and spheres "
-                                "(circles) only");
-        const auto mesh_file = r.optional_text(
-            p + ".mesh.file", "required",
-            "Wavefront OBJ file of a closed triangle mesh obstacle (3D only), relative to the "
-            "scene file's folder (not absolute, no \"..\").");
-        const double mesh_scale =
-            r.number(p + ".mesh.scale", 1, "m per file unit",
-                     "Scale of a mesh obstacle: a vertex v of the file is at scale v + offset.",
-                     Bound::positive);
-        // Always 3 numbers: a mesh is 3D (a 2D scene was refused above).
-        const Vec3 mesh_offset = r.vector(p + ".mesh.offset", {0, 0, 0}, 3, "m",
-                                          "Offset of a mesh obstacle, added after scaling.");
-        if (i >= count)
-            break;
-        SceneObstacle o;
-        const int shapes = (box != nullptr) + (sphere != nullptr) + (mesh != nullptr);
-        if (shapes != 1)
-            r.fail(p, shapes > 1 ? "an obstacle is one of box, sphere or mesh, not several"
-                                 : "expected {\"box\": {\"min\": [...], \"max\": [...]}}, "
-                                   "{\"sphere\": {\"centre\": [...], \"radius\": r}} or (3D) "
-                                   "{\"mesh\": {\"file\": \"name.obj\"}}");
-        const json* given = box ? box : sphere ? sphere : mesh;
-        const std::string shape = p + (box ? ".box" : sphere ? ".sphere" : ".mesh");
-        if (!given->is_object())
-            r.fail(shape, "expected an object, got " + describe(*given));
-        if (box) {
-            if (!min || !max)
-                r.fail(shape + (min ? ".max" : ".min"), "a box obstacle needs min and max");
-            o.shape = ObstacleShape::box;
-            o.min = *min;
-            o.max = *max;
-        } else if (sphere) {
-            if (!centre || !radius)
-                r.fail(shape + (centre ? ".radius" : ".centre"),
-                       "a sphere obstacle needs centre and radius");
-            o.shape = ObstacleShape::sphere;
-            o.centre = *centre;
-            o.radius = *radius;
-        } else {
-            if (!mesh_file)
-                r.fail(shape + ".file", "a mesh obstacle needs the OBJ file's name");
-            o.shape = ObstacleShape::mesh;
-            o.mesh_file = *mesh_file;
-            o.mesh_scale = mesh_scale;
-            o.mesh_offset = mesh_offset;
-            // Relative to the scene's own folder, and inside it, as a scene
-            // from elsewhere must not read files outside it.
-            const std::filesystem::path folder = std::filesystem::path(file).parent_path();
-            try {
-                const std::filesystem::path path = resolve_inside(
-                    folder.empty() ? "." : folder, *mesh_file, file, shape + ".file");
-                o.mesh = read_obj_mesh(path, mesh_scale,
-                                       {mesh_offset[0], mesh_offset[1], mesh_offset[2]}, file,
-                                       shape + ".file");
-            } catch (const InputError& e) {
-                r.fail(e.field, e.problem);
-            }
+std::vector<SceneObstacle> read_obstacles(FieldReader& r, int dim, const std::string& file) {
+    return read_list(r, obstacle_keys(), dim, [&](SceneObstacle& o, const std::string& shape) {
+        if (o.shape != ObstacleShape::mesh)
+            return;
+        // Relative to the scene's own folder, and inside it, as a scene from
+        // elsewhere must not read files outside it.
+        const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+        try {
+            const std::filesystem::path path =
+                resolve_inside(folder.empty() ? "." : folder, *o.mesh_file, file, shape + ".file");
+            o.mesh = read_obj_mesh(path, o.mesh_scale,
+                                   {o.mesh_offset[0], o.mesh_offset[1], o.mesh_offset[2]}, file,
+                                   shape + ".file");
+        } catch (const InputError& e) {
+            r.fail(e.field, e.problem);
         }
-        obstacles.push_back(o);
-    }
-}
-
-json write_obstacles(const std::vector<SceneObstacle>& obstacles, int dim) {
-    auto vec = [dim](const Vec3& v) {
-        return std::vector<double>(v.begin(), v.begin() + dim);
-    };
-    json out = json::array();
-    for (const auto& o : obstacles)
-        out.push_back(o.shape == ObstacleShape::box
-                          ? json{{"box", {{"min", vec(o.min)}, {"max", vec(o.max)}}}}
-                      : o.shape == ObstacleShape::sphere
-                          ? json{{"sphere", {{"centre", vec(o.centre)}, {"radius", o.radius}}}}
-                          // The file as the scene names it, relative to the scene's folder.
-                          : json{{"mesh",
-                                  {{"file", o.mesh_file},
-                                   {"scale", o.mesh_scale},
-                                   {"offset", vec(o.mesh_offset)}}}});
-    return out;
+    });
 }
 
 double check_obstacle(const FieldReader& r, const Scene& s, std::size_t i, double layers) {

@@ -1,85 +1,14 @@
-// The effects.paddles family's keys, read, checked and written by hand: a list of boxes, each with
-// the keys of its motion. (Their declarations move next to the family once it has its own folder.)
+// effects.paddles: the keys are declared in sph/boundaries/paddle_keys.cpp; here each paddle is
+// checked against the scene.
 #include "io/keys/scene_keys.hpp"
 
 namespace sph {
-
-void read_paddles(FieldReader& r, int dim, std::vector<ScenePaddle>& paddles) {
-    const std::size_t count = r.list(
-        "effects.paddles", "none",
-        "Boxes that move with a prescribed motion (wcsph, dfsph), a piston wavemaker: made of "
-        "boundary particles that push the fluid and drag it along (no slip).");
-    for (std::size_t i = 0; i < std::max<std::size_t>(count, 1); ++i) {
-        const std::string p = fmt::format("effects.paddles[{}]", i);
-        const ScenePaddle fallback;
-        ScenePaddle o;
-        o.min = r.vector(p + ".min", fallback.min, dim, "m",
-                         "Lower corner of the paddle's box at rest (before start).");
-        o.max = r.vector(p + ".max", fallback.max, dim, "m",
-                         "Upper corner of the paddle's box at rest.");
-        o.motion = r.choice(p + ".motion", fallback.motion, {"sine", "linear"},
-                            "How the paddle moves from start on: sine, displacement amplitude "
-                            "sin(2 pi (t - start) / period); linear, velocity (t - start) until "
-                            "end, then it stays.");
-        o.amplitude = r.vector(p + ".amplitude", fallback.amplitude, dim, "m",
-                               "Sine: the largest displacement (half the stroke), as a vector "
-                               "along the motion.");
-        o.period =
-            r.number(p + ".period", fallback.period, "s", "Sine: the period.", Bound::positive);
-        o.velocity = r.vector(p + ".velocity", fallback.velocity, dim, "m/s",
-                              "Linear: the velocity (not zero).");
-        o.start = r.number(p + ".start", fallback.start, "s", "When the paddle starts moving.",
-                           Bound::non_negative);
-        o.end = r.number(p + ".end", fallback.end, "s", "Linear: when the paddle stops.",
-                         Bound::non_negative);
-        if (i >= count)
-            break;
-        // Keys of the other motion would be silently ignored: refused instead.
-        const bool sine = o.motion == "sine";
-        for (const char* key : {".velocity", ".end"})
-            if (sine && r.present(p + key))
-                r.fail(p + key, "is for motion \"linear\"; a sine paddle has amplitude and period");
-        for (const char* key : {".amplitude", ".period"})
-            if (!sine && r.present(p + key))
-                r.fail(p + key, "is for motion \"sine\"; a linear paddle has velocity and end");
-        if (!sine) {
-            double speed = 0;
-            for (int a = 0; a < dim; ++a)
-                speed += o.velocity[a] * o.velocity[a];
-            if (!(speed > 0))
-                r.fail(p + ".velocity", "a linear paddle needs a velocity that is not zero");
-            if (!(o.start < o.end))
-                r.fail(p + ".end", "must be after start");
-        }
-        paddles.push_back(o);
-    }
-}
-
-json write_paddles(const std::vector<ScenePaddle>& paddles, int dim) {
-    auto vec = [dim](const Vec3& v) {
-        return std::vector<double>(v.begin(), v.begin() + dim);
-    };
-    json out = json::array();
-    for (const auto& o : paddles) {
-        json paddle = {{"min", vec(o.min)}, {"max", vec(o.max)}, {"motion", o.motion}};
-        if (o.motion == "sine") {
-            paddle["amplitude"] = vec(o.amplitude);
-            paddle["period"] = o.period;
-        } else {
-            paddle["velocity"] = vec(o.velocity);
-            paddle["end"] = o.end;
-        }
-        paddle["start"] = o.start;
-        out.push_back(paddle);
-    }
-    return out;
-}
 
 double check_paddle(const FieldReader& r, const Scene& s, std::size_t i, double layers) {
     const ScenePaddle& o = s.effects.paddles[i];
     const int dim = s.dimension;
     const std::string p = fmt::format("effects.paddles[{}]", i);
-    const bool sine = o.motion == "sine";
+    const bool sine = o.motion == PaddleMotion::sine;
     // How far the motion takes the box from rest over the clip, per axis.
     const double moving = std::max(0.0, std::min(o.end, s.duration) - o.start);
     double sites = 1, interior = 1;

@@ -1,10 +1,10 @@
 #include "sph/boundaries/boundary_particles.hpp"
 
+#include "sph/assert.hpp"
 #include "sph/headroom.hpp"
 #include "sph/lattice.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <numeric>
 
@@ -160,8 +160,8 @@ std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> 
 template <int D>
 void BoundaryParticles<D>::add_moving(std::vector<Vec<D>> rest, std::vector<Real> volumes,
                                       std::vector<std::uint32_t> group) {
-    assert(rest.size() == volumes.size() && rest.size() == group.size());
-    assert(!has_moving()); // one set of moving particles
+    SPHCLIP_ASSERT(rest.size() == volumes.size() && rest.size() == group.size());
+    SPHCLIP_ASSERT(!has_moving()); // one set of moving particles
     moving_begin_ = positions_.size();
     positions_.insert(positions_.end(), rest.begin(), rest.end());
     volumes_.insert(volumes_.end(), volumes.begin(), volumes.end());
@@ -210,7 +210,7 @@ template <int D>
 BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes,
                                         Real h)
     : h_(h) {
-    assert(positions.size() == volumes.size());
+    SPHCLIP_ASSERT(positions.size() == volumes.size());
     const std::vector<std::uint32_t> destination = build_grid(std::move(positions));
     volumes_.resize(volumes.size());
     for (std::size_t b = 0; b < volumes.size(); ++b)

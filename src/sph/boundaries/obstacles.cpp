@@ -1,7 +1,8 @@
 #include "sph/boundaries/obstacles.hpp"
 
+#include "sph/assert.hpp"
+
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -16,7 +17,7 @@ Real Obstacle<D>::signed_distance(const Vec<D>& x) const {
     if constexpr (D == 3)
         if (shape == ObstacleShape::mesh)
             return mesh->signed_distance(x);
-    assert(shape == ObstacleShape::box);
+    SPHCLIP_ASSERT(shape == ObstacleShape::box);
     // Box: minus the distance to the nearest face inside, the distance to the
     // box outside. From the faces themselves, not centre and half-size, so a
     // point on a face is at 0 exactly.

@@ -1,7 +1,8 @@
 #include "sph/boundaries/triangle_mesh.hpp"
 
+#include "sph/assert.hpp"
+
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -144,7 +145,7 @@ std::string mesh_solid_problem(const std::vector<Vec3>& vertices,
 
 TriangleMesh::TriangleMesh(std::vector<Vec3> vertices, std::vector<Triangle> triangles)
     : vertices_(std::move(vertices)), triangles_(std::move(triangles)) {
-    assert(mesh_solid_problem(vertices_, triangles_).empty());
+    SPHCLIP_ASSERT(mesh_solid_problem(vertices_, triangles_).empty());
     for (const Triangle& t : triangles_)
         volume_ += glm::dot(vertices_[t[0]], glm::cross(vertices_[t[1]], vertices_[t[2]])) / 6;
     // Outward normals: counter-clockwise seen from outside encloses a
@@ -262,7 +263,7 @@ TriangleMesh::Nearest TriangleMesh::nearest(const Vec3& x) const {
             std::swap(first, second);
             std::swap(near, far);
         }
-        assert(top + 2 <= stack.size());
+        SPHCLIP_ASSERT(top + 2 <= stack.size());
         if (far < best)
             stack[top++] = second;
         if (near < best)

@@ -21,8 +21,21 @@ namespace sph {
 // The scene's `effects.artificial_viscosity`; alpha 0 is no effect.
 struct ArtificialViscositySettings {
     static constexpr const char* key = "artificial_viscosity"; // in the scene's `effects`
-    // The scene reads its default from solver.artificial_viscosity.
+    // The scene's default: solver.artificial_viscosity.
     double alpha = 0;
+    // Without the key, solver.artificial_viscosity, on for a solver that
+    // declares it its default (wcsph) where alpha > 0.
+    template <class Scene>
+    static ArtificialViscositySettings defaults(const Scene& scene) {
+        return {scene.solver.artificial_viscosity};
+    }
+    template <class Scene>
+    static bool implied(const Scene& scene) {
+        return scene.capabilities.default_artificial_viscosity;
+    }
+    bool on() const { return alpha > 0; }
+    // Written 0 when off, so that read back nothing implies it.
+    static constexpr const char* off_key = "alpha";
     EffectCapabilities capabilities() const { return {}; }
     // How the scene's checks name it.
     std::string label() const { return "effects.artificial_viscosity"; }

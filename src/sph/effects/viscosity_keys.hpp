@@ -20,6 +20,20 @@ struct ViscositySettings {
     static constexpr const char* key = "viscosity"; // in the scene's `effects`
     ViscosityModel model = ViscosityModel::morris;  // the scene's default: the solver's
     double mu = 0;                                  // Pa.s; the scene's default: material.viscosity
+    // Viscosity is a property of the fluid: without the key, material.viscosity
+    // with the solver's model, on wherever mu > 0. (`Scene` is the rest of the
+    // scene, read before the effects: io/keys/effect_registry.hpp.)
+    template <class Scene>
+    static ViscositySettings defaults(const Scene& scene) {
+        return {scene.capabilities.viscosity_model, scene.material_viscosity};
+    }
+    template <class Scene>
+    static bool implied(const Scene&) {
+        return true;
+    }
+    bool on() const { return mu > 0; }
+    // Written 0 when off, so that read back nothing implies it.
+    static constexpr const char* off_key = "mu";
     EffectCapabilities capabilities() const {
         return {.reads_neighbour_lists = model != ViscosityModel::morris};
     }

@@ -16,6 +16,8 @@
 #include "sph/neighbours/neighbour_sum.hpp"
 
 #include <cmath>
+#include <fmt/format.h>
+#include <optional>
 
 namespace sph {
 
@@ -24,6 +26,15 @@ struct XsphSettings {
     static constexpr const char* key = "xsph"; // in the scene's `effects`
     double epsilon = 0.5; // fraction of the way to the neighbours' mean velocity, in (0, 1]
     EffectCapabilities capabilities() const { return {.reads_neighbour_lists = true}; }
+    // Above 1 it would overshoot the mean.
+    std::optional<KeyProblem> problem() const {
+        if (!(epsilon > 1))
+            return std::nullopt;
+        return KeyProblem{"epsilon",
+                          fmt::format("{} is above 1: XSPH would overshoot the neighbours' mean "
+                                      "velocity",
+                                      epsilon)};
+    }
     // How the scene's checks name it.
     std::string label() const { return "effects.xsph"; }
 };

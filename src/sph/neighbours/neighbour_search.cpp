@@ -4,6 +4,7 @@
 #include "sph/neighbours/sorted_grid.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace sph {
@@ -13,16 +14,29 @@ std::vector<std::string> neighbour_search_names() {
 }
 
 template <int D>
-std::unique_ptr<NeighbourSearch<D>> make_neighbour_search(std::string_view name) {
-    if (name == "hash")
+std::unique_ptr<NeighbourSearch<D>> make_neighbour_search(NeighbourSearchKind kind) {
+    switch (kind) {
+    case NeighbourSearchKind::hash:
         return std::make_unique<SpatialHash<D>>();
-    if (name == "sorted_grid")
+    case NeighbourSearchKind::sorted_grid:
         return std::make_unique<SortedGrid<D>>();
-    if (name == "all_pairs")
+    case NeighbourSearchKind::all_pairs:
         return std::make_unique<AllPairs<D>>();
-    throw std::invalid_argument("unknown neighbour search: " + std::string(name));
+    }
+    throw std::invalid_argument("unknown neighbour search");
 }
 
+template <int D>
+std::unique_ptr<NeighbourSearch<D>> make_neighbour_search(std::string_view name) {
+    const auto names = neighbour_search_names();
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at == names.end())
+        throw std::invalid_argument("unknown neighbour search: " + std::string(name));
+    return make_neighbour_search<D>(static_cast<NeighbourSearchKind>(at - names.begin()));
+}
+
+template std::unique_ptr<NeighbourSearch<2>> make_neighbour_search<2>(NeighbourSearchKind);
+template std::unique_ptr<NeighbourSearch<3>> make_neighbour_search<3>(NeighbourSearchKind);
 template std::unique_ptr<NeighbourSearch<2>> make_neighbour_search<2>(std::string_view);
 template std::unique_ptr<NeighbourSearch<3>> make_neighbour_search<3>(std::string_view);
 

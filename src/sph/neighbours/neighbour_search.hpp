@@ -32,9 +32,16 @@ class NeighbourSearch {
     }
 };
 
+// The neighbour searches (solver.neighbour_search), in the order of
+// neighbour_search_names().
+enum class NeighbourSearchKind { hash, sorted_grid, all_pairs };
+
 // Names accepted by make_neighbour_search, in the order docs/scene-keys.md lists them.
 std::vector<std::string> neighbour_search_names();
 
+template <int D>
+std::unique_ptr<NeighbourSearch<D>> make_neighbour_search(NeighbourSearchKind kind);
+// By name, one of neighbour_search_names(); throws std::invalid_argument for another.
 template <int D>
 std::unique_ptr<NeighbourSearch<D>> make_neighbour_search(std::string_view name);
 

@@ -22,7 +22,7 @@ namespace sph {
 
 // Incompressible: no sound condition on the step; its own integration scheme.
 inline constexpr SolverCapabilities dfsph_capabilities{
-    .name = "dfsph", .carries_sound = false, .supports_verlet = false};
+    .name = "dfsph", .kind = SolverKind::dfsph, .carries_sound = false, .supports_verlet = false};
 
 template <int D>
 class DfsphSolver final : public Solver<D> {

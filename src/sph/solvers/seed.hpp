@@ -9,6 +9,7 @@ namespace sph {
 
 // Reflecting walls only; the seed's kernel and viscosity term by default.
 inline constexpr SolverCapabilities seed_capabilities{.name = "seed",
+                                                      .kind = SolverKind::seed,
                                                       .wall_particles = false,
                                                       .default_kernel = KernelKind::seed,
                                                       .viscosity_model = ViscosityModel::seed};

@@ -1,5 +1,6 @@
 #include "sph/solvers/solver.hpp"
 
+#include "sph/assert.hpp"
 #include "sph/solvers/dfsph.hpp"
 #include "sph/solvers/seed.hpp"
 #include "sph/solvers/wcsph.hpp"
@@ -22,25 +23,26 @@ std::vector<std::string> solver_names() {
     return names;
 }
 
-const SolverCapabilities& solver_capabilities(std::string_view name) {
-    for (const auto* solver : solvers)
-        if (solver->name == name)
-            return *solver;
-    throw std::invalid_argument("unknown solver: " + std::string(name));
+const SolverCapabilities& solver_capabilities(SolverKind kind) {
+    const SolverCapabilities& solver = *solvers.at(static_cast<std::size_t>(kind));
+    SPHCLIP_ASSERT(solver.kind == kind);
+    return solver;
 }
 
 template <int D>
-std::unique_ptr<Solver<D>> make_solver(std::string_view name, const Params<D>& params) {
-    if (name == "seed")
+std::unique_ptr<Solver<D>> make_solver(SolverKind kind, const Params<D>& params) {
+    switch (kind) {
+    case SolverKind::seed:
         return std::make_unique<SeedSolver<D>>(params.kernel);
-    if (name == "wcsph")
+    case SolverKind::wcsph:
         return std::make_unique<WcsphSolver<D>>(params.kernel);
-    if (name == "dfsph")
+    case SolverKind::dfsph:
         return std::make_unique<DfsphSolver<D>>(params.kernel);
-    throw std::invalid_argument("unknown solver: " + std::string(name));
+    }
+    throw std::invalid_argument("unknown solver");
 }
 
-template std::unique_ptr<Solver<2>> make_solver<2>(std::string_view, const Params<2>&);
-template std::unique_ptr<Solver<3>> make_solver<3>(std::string_view, const Params<3>&);
+template std::unique_ptr<Solver<2>> make_solver<2>(SolverKind, const Params<2>&);
+template std::unique_ptr<Solver<3>> make_solver<3>(SolverKind, const Params<3>&);
 
 } // namespace sph

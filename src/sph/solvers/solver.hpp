@@ -124,7 +124,8 @@ class Solver {
 // declared in its own file; the scene's checks and defaults ask these
 // rather than the solver's name.
 struct SolverCapabilities {
-    std::string_view name;         // solver.name
+    std::string_view name; // solver.name
+    SolverKind kind = SolverKind::seed;
     bool carries_sound = true;     // weakly compressible: the step is bounded by the sound speed
     bool wall_particles = true;    // boundary particles: walls, obstacles, paddles
     bool supports_verlet = true;   // solver.integrator verlet
@@ -137,10 +138,9 @@ struct SolverCapabilities {
 
 // Names accepted by make_solver (`solver.name`), in the order docs/scene-keys.md lists them.
 std::vector<std::string> solver_names();
-// The capabilities of the solver of that name (one of solver_names()).
-const SolverCapabilities& solver_capabilities(std::string_view name);
+const SolverCapabilities& solver_capabilities(SolverKind kind);
 
 template <int D>
-std::unique_ptr<Solver<D>> make_solver(std::string_view name, const Params<D>& params);
+std::unique_ptr<Solver<D>> make_solver(SolverKind kind, const Params<D>& params);
 
 } // namespace sph

@@ -9,7 +9,7 @@ const KeyTable<SolverSettings>& solver_keys() {
     using S = SolverSettings;
     static const KeyTable<S> keys{
         {.path = "name",
-         .field = &S::name,
+         .field = enum_field<&S::name>(),
          .doc = "Solver: seed (the report's model), wcsph (Becker & Teschner 2007) or dfsph "
                 "(Bender & Koschier 2017).",
          .choices = solver_names()},
@@ -79,7 +79,7 @@ const KeyTable<SolverSettings>& solver_keys() {
          .doc = "dfsph: start each pressure solve from the last step's (2-3x fewer iterations; "
                 "less accurate pressure in deep tanks)."},
         {.path = "neighbour_search",
-         .field = &S::neighbour_search,
+         .field = enum_field<&S::neighbour_search>(),
          .doc = "Neighbour search.",
          .choices = neighbour_search_names()},
         {.path = "reorder_every",

@@ -4,6 +4,7 @@
 // solve. Defaults shared with the core's settings structs (params.hpp) are
 // taken from them, so each is written once.
 
+#include "sph/neighbours/neighbour_search.hpp"
 #include "sph/params.hpp"
 #include "sph/scene_key.hpp"
 
@@ -13,7 +14,7 @@
 namespace sph {
 
 struct SolverSettings {
-    std::string name = "seed";                 // seed | wcsph | dfsph
+    SolverKind name = SolverKind::seed;        // seed | wcsph | dfsph
     std::optional<KernelKind> kernel;          // none: auto, the solver's default
     std::optional<double> dt;                  // s; fixed step; default adaptive
     double cfl = TimeStepSettings{}.cfl;       // Courant number of the adaptive step
@@ -28,7 +29,7 @@ struct SolverSettings {
     int max_iterations = PressureSolveSettings{}.max_iterations;                // dfsph
     bool warm_start = PressureSolveSettings{}.warm_start;                       // dfsph
     // sorted_grid | hash (the seed's) | all_pairs
-    std::string neighbour_search = "sorted_grid";
+    NeighbourSearchKind neighbour_search = NeighbourSearchKind::sorted_grid;
     // Steps between spatial sorts of the particle arrays by cell; 0: never.
     int reorder_every = 20;
     // The arithmetic of wcsph's density and pressure passes

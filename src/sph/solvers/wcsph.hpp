@@ -14,8 +14,10 @@
 namespace sph {
 
 // The single-precision passes are wcsph's; it keeps solver.artificial_viscosity.
-inline constexpr SolverCapabilities wcsph_capabilities{
-    .name = "wcsph", .single_precision = true, .default_artificial_viscosity = true};
+inline constexpr SolverCapabilities wcsph_capabilities{.name = "wcsph",
+                                                       .kind = SolverKind::wcsph,
+                                                       .single_precision = true,
+                                                       .default_artificial_viscosity = true};
 
 template <int D>
 class WcsphSolver final : public ExplicitSolver<D> {

@@ -310,5 +310,5 @@ TEST_CASE("a paddle's keys survive the round trip through run.json", "[paddle]")
     CHECK(to_json(a) == to_json(b));
     REQUIRE(b.effects.paddles.size() == 2);
     CHECK(b.effects.paddles[1].period == 0.7);
-    CHECK(b.effects.paddles[0].motion == "linear");
+    CHECK(b.effects.paddles[0].motion == PaddleMotion::linear);
 }

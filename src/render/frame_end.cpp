@@ -1,0 +1,35 @@
+#include "render/frame_end.hpp"
+
+#include "render/camera.hpp"
+#include "render/gl_resources.hpp"
+#include "render/overlay.hpp"
+#include "render/scenery.hpp"
+
+namespace sph {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+} // namespace
+
+Image finish_frame(Scenery& scenery, Overlay& overlay, FlatPainter& painter,
+                   gl::RenderTarget& target, const Camera& camera, const Snapshot& frame,
+                   Clock::time_point start, FrameTimings& timings) {
+    scenery.draw(painter, camera, frame.time);
+    overlay.draw(painter, frame);
+    glFinish();
+    timings.draw_seconds = seconds_since(start);
+
+    const auto readback_start = Clock::now();
+    Image image = target.read();
+    gl::check_gl("frame rendering");
+    timings.readback_seconds = seconds_since(readback_start);
+    return image;
+}
+
+} // namespace sph

@@ -1,0 +1,29 @@
+#pragma once
+// The end of every frame once its spheres are drawn, shared by FrameRenderer
+// and the render benchmark's variants (tests/bench/render_variants.cpp), so
+// that what they measure ends as the product's frames do.
+
+#include "io/image.hpp"
+#include "render/frame_renderer.hpp"
+
+#include <chrono>
+
+namespace sph {
+
+class Scenery;
+class Overlay;
+class FlatPainter;
+struct Camera;
+namespace gl {
+class RenderTarget;
+}
+
+// Draws the solids (mesh obstacles, the domain box, the other obstacles and
+// the paddles), then the overlay (colour bar, its labels, the caption) over
+// everything, and reads the samples back resolved, rows top-down. Sets the
+// draw time (since `start`, which began the frame) and the readback time.
+Image finish_frame(Scenery& scenery, Overlay& overlay, FlatPainter& painter,
+                   gl::RenderTarget& target, const Camera& camera, const Snapshot& frame,
+                   std::chrono::steady_clock::time_point start, FrameTimings& timings);
+
+} // namespace sph

@@ -24,7 +24,9 @@ struct ValidationCase {
     std::vector<std::string> sets;
 };
 
-// hydrostatic_2d, hydrostatic_3d, dam_break_2d, dam_break_3d, honey_spread_2d.
+// hydrostatic_2d, hydrostatic_3d, dam_break_2d, dam_break_3d (the seed's viscous fluid),
+// dam_break_water_2d, dam_break_water_2d_dfsph, dam_break_water_3d, dam_break_water_3d_dfsph
+// (water, wcsph and dfsph), honey_spread_2d.
 const std::vector<ValidationCase>& validation_cases();
 
 // Null for a name that is no case.

@@ -52,6 +52,11 @@ class DfsphSolver final : public Solver<D> {
     int solve(const Params<D>& params, Real dt, Target target, const StepContext<D>& context,
               State<D>& state);
     void correct_velocities(const StepContext<D>& context, State<D>& state) const;
+    // One step of dt, split into halves while its density solve does not converge.
+    StepReport step_in_pieces(const Params<D>& params, Real dt, int splits, State<D>& state,
+                              StepContext<D>& context);
+    // Halvings of a step at most: dt / 16.
+    static constexpr int max_splits = 4;
 
     KernelKind kernel_;
     Real last_density_error_pct_ = 0;
@@ -65,11 +70,12 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Real> previous_stiffness_, previous_divergence_; // last step's sums
     Real previous_dt_ = 0;
     std::vector<Real> permute_scratch_;
-    std::vector<Real> source_;              // the compression rate to remove
-    std::vector<Vec<D>> velocity_at_start_; // to restart a diverging solve
-    std::vector<Vec<D>> gradient_;          // m grad W_ij per fluid pair (neighbour list order)
-    std::vector<Vec<D>> wall_gradient_;     // rho0 V_b grad W_ib per wall pair
-    std::vector<Real> wall_motion_;         // sum_b w_ib . v_b; empty when no wall moves
+    std::vector<Real> source_;                   // the compression rate to remove
+    std::vector<Vec<D>> velocity_at_start_;      // to restart a diverging solve
+    std::vector<Vec<D>> velocity_at_step_start_; // to redo a step in halves
+    std::vector<Vec<D>> gradient_;      // m grad W_ij per fluid pair (neighbour list order)
+    std::vector<Vec<D>> wall_gradient_; // rho0 V_b grad W_ib per wall pair
+    std::vector<Real> wall_motion_;     // sum_b w_ib . v_b; empty when no wall moves
 };
 
 } // namespace sph

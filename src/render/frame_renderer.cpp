@@ -55,6 +55,13 @@ std::size_t FrameRenderer::last_outside_view() const {
     return parts_->batch.outside_view();
 }
 
+std::size_t FrameRenderer::last_below_range() const {
+    return parts_->batch.below_range();
+}
+std::size_t FrameRenderer::last_above_range() const {
+    return parts_->batch.above_range();
+}
+
 Image FrameRenderer::render(const Snapshot& frame) {
     Parts& p = *parts_;
     const auto start = Clock::now();

@@ -36,6 +36,9 @@ class FrameRenderer {
     // skipped as outside the view.
     std::size_t last_drawn() const;
     std::size_t last_outside_view() const;
+    // Drawn particles of the last frame below and above the colour range.
+    std::size_t last_below_range() const;
+    std::size_t last_above_range() const;
     const RenderSettings& settings() const { return settings_; }
 
   private:

@@ -25,8 +25,11 @@ const KeyTable<Scene::Render>& render_keys() {
         {.path = "range",
          .field = &S::range,
          .unit = "field unit",
-         .doc = "Field values at the two ends of the colour map; by default speed 0..sqrt(2 g "
-                "H), density rho0 +- 3%, pressure 0..rho0 g H (H: domain height).",
+         .doc = "Field values at the two ends of the colour map, used as given for any field; by "
+                "default each field's own from the scene's physics: speed 0..v = sqrt(v0^2 + 2 "
+                "|g| H) (H: the highest fluid or inlet above the floor, v0 its speed), pressure "
+                "0..rho0 v^2 / 2, density rho0 (1 +- max(1%, 2 v^2 / c^2)). A frame with over 5% "
+                "of its particles outside warns.",
          .absent = "from the scene"},
         {.path = "spheres",
          .field = &S::spheres,

@@ -25,7 +25,6 @@ double seconds_since(Clock::time_point start) {
 // order the frame uses it. A second way of drawing the fluid (a surface
 // mesh) would be a batch and a pass of its own beside the spheres'.
 struct FrameRenderer::Parts {
-    FrameLayout layout;
     gl::RenderTarget target;
     gl::Texture colour_map;
     OutlineRule outline_rule;
@@ -34,11 +33,14 @@ struct FrameRenderer::Parts {
     FlatPainter painter;
     Scenery scenery;
     Overlay overlay;
+    // The overlay's room measured, the scene's place around it.
+    FrameLayout layout;
 
     explicit Parts(const RenderSettings& s)
-        : layout(layout_frame(s.width, s.height)), target(s.width, s.height, s.samples),
+        : target(s.width, s.height, s.samples),
           colour_map(gl::make_colour_map_texture(s.colour_map)), outline_rule(s),
-          batch(s, outline_groups), spheres(s), scenery(s), overlay(s, layout) {}
+          batch(s, outline_groups), spheres(s), scenery(s), overlay(s),
+          layout(layout_frame(s.width, s.height, overlay.room(), scene_aspect(s))) {}
 };
 
 FrameRenderer::FrameRenderer(const RenderSettings& settings)
@@ -47,6 +49,10 @@ FrameRenderer::FrameRenderer(const RenderSettings& settings)
 }
 
 FrameRenderer::~FrameRenderer() = default;
+
+const std::string& FrameRenderer::font_warning() const {
+    return parts_->overlay.font_warning();
+}
 
 std::size_t FrameRenderer::last_drawn() const {
     return parts_->batch.drawn();
@@ -80,7 +86,7 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // Mesh obstacles, the domain box, the other obstacles and the paddles.
     p.scenery.draw(p.painter, camera, frame.time);
     // Colour bar, its labels and the caption, over everything.
-    p.overlay.draw(p.painter, frame);
+    p.overlay.draw(p.painter, frame, p.layout);
     glFinish();
     timings_.draw_seconds = seconds_since(start);
 

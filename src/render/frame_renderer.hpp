@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
 
 namespace sph {
 
@@ -40,6 +41,8 @@ class FrameRenderer {
     std::size_t last_below_range() const;
     std::size_t last_above_range() const;
     const RenderSettings& settings() const { return settings_; }
+    // Why the overlay's text is not in the font asked for (empty: it is).
+    const std::string& font_warning() const;
 
   private:
     struct Parts;

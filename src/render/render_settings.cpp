@@ -82,6 +82,9 @@ RenderSettings make_render_settings(const Scene& scene) {
     r.height = scene.render.size[1];
     r.dimension = scene.dimension;
     r.field = scene.render.colour;
+    r.title = scene.render.title.value_or("");
+    r.caption = scene.render.caption.value_or(r.caption);
+    r.font = scene.render.font.value_or("");
     r.spheres = scene.render.spheres;
     r.radius = 0.5 * scene.fluid.spacing;
     for (int a = 0; a < scene.dimension; ++a) {

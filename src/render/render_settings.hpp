@@ -15,8 +15,11 @@ namespace sph {
 struct RenderSettings {
     int width = 1280, height = 720; // px
     int dimension = 2;
-    std::string field = "velocity";    // velocity | density | pressure
-    std::string label = "speed (m/s)"; // the colour bar's title
+    std::string field = "velocity";                        // velocity | density | pressure
+    std::string label = "speed (m/s)";                     // the colour bar's title
+    std::string title;                                     // above the scene, left; empty: none
+    std::string caption = "t = {time} s    frame {frame}"; // format_caption's pattern; empty: none
+    std::string font; // a font file; empty: find_font's default
     std::string colour_map = "viridis";
     std::array<double, 2> range{0, 1}; // field values at the ends of the map
     // The key that set `range` ("render.range"), or empty when it is the

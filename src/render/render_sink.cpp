@@ -22,6 +22,8 @@ RenderSink::RenderSink(std::unique_ptr<GlContext> context, const RenderSettings&
                        std::filesystem::path png_folder, std::filesystem::path mp4_path, double fps,
                        const Mp4Options& mp4_options, EncodeThread encode)
     : context_(std::move(context)), renderer_(settings), png_folder_(std::move(png_folder)) {
+    if (!renderer_.font_warning().empty())
+        warnings_.push_back(renderer_.font_warning());
     if (!png_folder_.empty()) {
         std::filesystem::create_directories(png_folder_);
         png_ = std::make_unique<PngWriterThread>();

@@ -133,7 +133,7 @@ struct Scene {
         int video_quality = 20;                     // x264 constant quality (CRF), 0 best - 51
         std::string video_preset = "veryfast";      // x264 speed/size trade-off
         std::string backend = "auto";               // auto | egl | osmesa
-        std::optional<std::string> title;   // above the scene; none by default
+        std::optional<std::string> title;           // above the scene; none by default
         std::optional<std::string> caption; // {time} {frame} {steps}; default time and frame
         std::optional<std::string> font;    // a font file; default DejaVu Sans
         struct Camera {

@@ -69,12 +69,13 @@ TEST_CASE("small spheres as flat discs look like ray-cast ones", "[render]") {
         VariantRenderer renderer(r, {.flat_below_px = 8, .flat_as_points = points});
         const Image image = renderer.render(snapshot);
         CHECK(renderer.last_flat() > renderer.last_drawn() / 2);
-        // Mean absolute difference over the RGB channels, 0-255.
+        // Mean absolute difference over the RGB channels, 0-255 (the cube
+        // fills about 45% of the image).
         double sum = 0;
         for (std::size_t k = 0; k < image.rgba.size(); ++k)
             if (k % 4 != 3)
                 sum += std::abs(int(image.rgba[k]) - int(reference.rgba[k]));
-        CHECK(sum / double(image.rgba.size() / 4 * 3) < 3.0);
+        CHECK(sum / double(image.rgba.size() / 4 * 3) < 3.5);
     }
 }
 

@@ -274,6 +274,16 @@ class ClipRun {
             sink->write(snapshot_);
         sinks_s_ += seconds_since(start);
         ++written_;
+        say_new_warnings();
+    }
+
+    // The renderer's warnings (a colour range most particles fall outside)
+    // on stderr as they arise; run.json "warnings" lists them at the end.
+    void say_new_warnings() {
+        if (!render_)
+            return;
+        for (; warned_ < render_->warnings().size(); ++warned_)
+            say(stderr, "sphclip: warning: {}\n", render_->warnings()[warned_]);
     }
 
     // Every ending comes here: the sinks are finished (the video finalised),
@@ -290,6 +300,8 @@ class ClipRun {
             end = {RunStatus::failed, message_of(sink_error), sink_error};
         const double seconds = wall();
         const std::vector<StageRow> stages = record_timings(seconds);
+        if (render_ && !render_->warnings().empty())
+            record_.document["warnings"] = render_->warnings();
         record_.save(status_name(end.status), written_, sim_.steps(), sim_.time(), seconds,
                      sim_.state().size(), true, end.error);
         switch (end.status) {
@@ -400,6 +412,7 @@ class ClipRun {
     const std::chrono::system_clock::time_point started_ = std::chrono::system_clock::now();
     Snapshot snapshot_;
     std::uint64_t written_ = 0;
+    std::size_t warned_ = 0; // the renderer's warnings said so far
     // Where the time went beyond the simulation's own stages.
     std::vector<double> simulate_seconds_; // per frame: stepping and frame fields
     double frame_fields_s_ = 0;            // statistics and copies for the sinks

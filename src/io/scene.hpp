@@ -120,6 +120,9 @@ struct Scene {
         int video_quality = 20;                     // x264 constant quality (CRF), 0 best - 51
         VideoPreset video_preset = VideoPreset::veryfast; // x264 speed/size trade-off
         std::string backend = "auto";                     // auto | egl | osmesa
+        std::optional<std::string> title;                 // above the scene; none by default
+        std::optional<std::string> caption; // {time} {frame} {steps}; default time and frame
+        std::optional<std::string> font;    // a font file; default DejaVu Sans
         struct Camera {
             std::optional<Vec3> position; // m; default frames the domain
             std::optional<Vec3> target;   // m; default the domain centre

@@ -6,14 +6,35 @@
 
 namespace sph {
 
-FrameLayout layout_frame(int width, int height) {
+double frame_margin(int height) {
+    return std::max(6.0, std::round(0.03 * height));
+}
+
+double scene_aspect(const RenderSettings& s) {
+    if (s.dimension != 2)
+        return 0;
+    const glm::dvec3 size = s.domain_max - s.domain_min;
+    return size.y > 0 ? size.x / size.y : 0;
+}
+
+FrameLayout layout_frame(int width, int height, const OverlayRoom& room, double aspect) {
     FrameLayout l;
     l.width = width;
     l.height = height;
-    l.text_scale = std::max(1.f, std::round(float(height) / 360.f));
-    l.bar_space = std::max(75.0, 150.0 * width / 1280.0);
-    l.margin = std::max(8.0, 24.0 * height / 720.0);
-    l.caption_space = 18.0 * l.text_scale;
+    l.margin = frame_margin(height);
+    const double room_w = std::max(1.0, width - room.right - 2 * l.margin);
+    const double room_h = std::max(1.0, height - room.top - 2 * l.margin);
+    double w = room_w, h = room_h;
+    if (aspect > 0) {
+        w = std::min(room_w, room_h * aspect);
+        h = w / aspect;
+    }
+    // The group (scene, the band on its right, the band above) centred.
+    const double x = 0.5 * (width - (w + room.right));
+    const double y = 0.5 * (height - (h + room.top));
+    l.top = {x, y, w + room.right, room.top};
+    l.scene = {x, y + room.top, w, h};
+    l.right = {x + w, y + room.top, room.right, h};
     return l;
 }
 
@@ -28,20 +49,24 @@ Camera make_camera(const RenderSettings& s, const CameraPose& pose, const FrameL
     camera.image_height = layout.height;
     const glm::dvec3& origin = camera.origin;
     const int w = layout.width, h = layout.height;
+    const PixelRect& r = layout.scene;
+    // Clip space of the scene's rectangle to the image's: the rectangle's
+    // [-1, 1] square scaled and moved to where the layout puts it.
+    const glm::mat4 into_rect =
+        glm::translate(glm::mat4(1.f), glm::vec3(float((2 * r.x + r.width) / w - 1),
+                                                 float(1 - (2 * r.y + r.height) / h), 0.f)) *
+        glm::scale(glm::mat4(1.f), glm::vec3(float(r.width / w), float(r.height / h), 1.f));
     if (camera.orthographic) {
-        // The domain as large as fits between the margins, left of the bar
-        // and below the caption, centred there.
+        // The domain fills the rectangle (the layout gave it the domain's
+        // aspect; any difference is split evenly).
         const glm::dvec3 size = s.domain_max - s.domain_min;
-        const double available_w = std::max(1.0, w - layout.bar_space - 2 * layout.margin);
-        const double available_h = std::max(1.0, h - layout.caption_space - 2 * layout.margin);
-        const double scale = std::min(available_w / size.x, available_h / size.y); // px per m
-        const double left = s.domain_min.x - origin.x -
-                            (layout.margin + 0.5 * (available_w - scale * size.x)) / scale;
-        const double bottom = s.domain_min.y - origin.y -
-                              (layout.margin + 0.5 * (available_h - scale * size.y)) / scale;
+        const double scale = std::min(r.width / size.x, r.height / size.y); // px per m
+        const double half_w = 0.5 * r.width / scale, half_h = 0.5 * r.height / scale;
+        const glm::dvec3 centre = 0.5 * (s.domain_min + s.domain_max) - origin;
         const double depth = 10 + 4 * s.radius;
         camera.projection =
-            glm::ortho(left, left + w / scale, bottom, bottom + h / scale, -depth, depth);
+            into_rect * glm::mat4(glm::ortho(centre.x - half_w, centre.x + half_w,
+                                             centre.y - half_h, centre.y + half_h, -depth, depth));
         return camera;
     }
     camera.view = glm::lookAt(glm::vec3(pose.position - origin), glm::vec3(pose.target - origin),
@@ -50,13 +75,10 @@ Camera make_camera(const RenderSettings& s, const CameraPose& pose, const FrameL
     // domain behind the target.
     const double distance = glm::length(pose.position - pose.target);
     const double extent = glm::length(s.domain_max - s.domain_min);
-    camera.projection = glm::perspective(glm::radians(float(pose.fov)), float(w) / float(h),
-                                         float(std::max(1e-4 * distance, 0.01 * s.radius)),
-                                         float(4 * (distance + extent)));
-    // Centre the view in the part of the image left of the colour bar.
     camera.projection =
-        glm::translate(glm::mat4(1.f), glm::vec3(float(-layout.bar_space / w), 0.f, 0.f)) *
-        camera.projection;
+        into_rect * glm::perspective(glm::radians(float(pose.fov)), float(r.width / r.height),
+                                     float(std::max(1e-4 * distance, 0.01 * s.radius)),
+                                     float(4 * (distance + extent)));
     return camera;
 }
 

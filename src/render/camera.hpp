@@ -1,11 +1,11 @@
 #pragma once
 // Camera and layout: where the scene, the caption and the colour bar go in
 // the image, and the view and projection that put the scene in its place.
-// The overlay's room is reserved first (FrameLayout: today fixed shares of
-// the image; an overlay that measures its text, or adds a legend, would
-// reserve more here), and the camera fits the scene into what is left. A
-// camera fitted to the particles or animated over the clip is a different
-// CameraPose per frame (today fixed_pose); nothing else changes.
+// The overlay measures its text and asks for its room (OverlayRoom), the
+// layout places the scene and the bands (FrameLayout), and the camera fits
+// the scene into its rectangle. A camera fitted to the particles or
+// animated over the clip is a different CameraPose per frame; nothing else
+// changes.
 
 #include "render/render_settings.hpp"
 
@@ -14,18 +14,39 @@
 
 namespace sph {
 
-// The room the overlay takes, in pixels, scaled with the image: a caption
-// line on top, the colour bar and its labels on the right, a margin around
-// the scene.
-struct FrameLayout {
-    int width = 0, height = 0; // px, the whole image
-    float text_scale = 1;      // px per pixel of a glyph
-    double bar_space = 0;      // px on the right: the colour bar and its labels
-    double margin = 0;         // px around the scene
-    double caption_space = 0;  // px on top: the caption
+// A rectangle of the image in pixels, origin at the top left, y down.
+struct PixelRect {
+    double x = 0, y = 0, width = 0, height = 0;
+    double right() const { return x + width; }
+    double bottom() const { return y + height; }
 };
 
-FrameLayout layout_frame(int width, int height);
+// The room the overlay asks for beside the scene, px: a band above it (the
+// title and caption) and one on its right (the colour bar and its labels).
+struct OverlayRoom {
+    double top = 0, right = 0;
+};
+
+// Where the scene and the overlay's bands go. The scene and its bands are
+// one group, centred in the image with at least `margin` around it: the bar
+// sits right beside the scene, with no dead band between them.
+struct FrameLayout {
+    int width = 0, height = 0; // px, the whole image
+    double margin = 0;         // px, at least, around the group
+    PixelRect scene;           // where the scene is drawn
+    PixelRect top, right;      // the overlay's bands
+};
+
+// The margin around the group for an image `height` px tall.
+double frame_margin(int height);
+
+// The scene's own aspect (width / height) for the layout: 2D the domain's,
+// 3D none (0).
+double scene_aspect(const RenderSettings& settings);
+
+// `aspect`: the scene's own width / height (2D: the domain's), which the
+// scene's rectangle keeps; 0: the scene fills the room left (3D).
+FrameLayout layout_frame(int width, int height, const OverlayRoom& room = {}, double aspect = 0);
 
 // Where a 3D scene is seen from.
 struct CameraPose {
@@ -51,8 +72,9 @@ struct Camera {
     double pixels_per_radius() const { return projection[1][1] * image_height; }
 };
 
-// 2D: the domain fitted into the scene's part of the layout, orthographic.
-// 3D: the pose's perspective, centred in the part left of the colour bar.
+// 2D: the domain fitted into the layout's scene rectangle, orthographic.
+// 3D: the pose's perspective, its vertical field of view the scene
+// rectangle's height, centred in it.
 Camera make_camera(const RenderSettings& settings, const CameraPose& pose,
                    const FrameLayout& layout);
 

@@ -19,9 +19,9 @@ double seconds_since(Clock::time_point start) {
 
 Image finish_frame(Scenery& scenery, Overlay& overlay, FlatPainter& painter,
                    gl::RenderTarget& target, const Camera& camera, const Snapshot& frame,
-                   Clock::time_point start, FrameTimings& timings) {
+                   const FrameLayout& layout, Clock::time_point start, FrameTimings& timings) {
     scenery.draw(painter, camera, frame.time);
-    overlay.draw(painter, frame);
+    overlay.draw(painter, frame, layout);
     glFinish();
     timings.draw_seconds = seconds_since(start);
 

@@ -14,6 +14,7 @@ class Scenery;
 class Overlay;
 class FlatPainter;
 struct Camera;
+struct FrameLayout;
 namespace gl {
 class RenderTarget;
 }
@@ -24,6 +25,7 @@ class RenderTarget;
 // draw time (since `start`, which began the frame) and the readback time.
 Image finish_frame(Scenery& scenery, Overlay& overlay, FlatPainter& painter,
                    gl::RenderTarget& target, const Camera& camera, const Snapshot& frame,
-                   std::chrono::steady_clock::time_point start, FrameTimings& timings);
+                   const FrameLayout& layout, std::chrono::steady_clock::time_point start,
+                   FrameTimings& timings);
 
 } // namespace sph

@@ -26,7 +26,6 @@ double seconds_since(Clock::time_point start) {
 // order the frame uses it. A second way of drawing the fluid (a surface
 // mesh) would be a batch and a pass of its own beside the spheres'.
 struct FrameRenderer::Parts {
-    FrameLayout layout;
     gl::RenderTarget target;
     gl::Texture colour_map;
     OutlineRule outline_rule;
@@ -35,11 +34,14 @@ struct FrameRenderer::Parts {
     FlatPainter painter;
     Scenery scenery;
     Overlay overlay;
+    // The overlay's room measured, the scene's place around it.
+    FrameLayout layout;
 
     explicit Parts(const RenderSettings& s)
-        : layout(layout_frame(s.width, s.height)), target(s.width, s.height, s.samples),
+        : target(s.width, s.height, s.samples),
           colour_map(gl::make_colour_map_texture(s.colour_map)), outline_rule(s),
-          batch(s, outline_groups), spheres(s), scenery(s), overlay(s, layout) {}
+          batch(s, outline_groups), spheres(s), scenery(s), overlay(s),
+          layout(layout_frame(s.width, s.height, overlay.room(), scene_aspect(s))) {}
 };
 
 FrameRenderer::FrameRenderer(const RenderSettings& settings)
@@ -49,11 +51,22 @@ FrameRenderer::FrameRenderer(const RenderSettings& settings)
 
 FrameRenderer::~FrameRenderer() = default;
 
+const std::string& FrameRenderer::font_warning() const {
+    return parts_->overlay.font_warning();
+}
+
 std::size_t FrameRenderer::last_drawn() const {
     return parts_->batch.drawn();
 }
 std::size_t FrameRenderer::last_outside_view() const {
     return parts_->batch.outside_view();
+}
+
+std::size_t FrameRenderer::last_below_range() const {
+    return parts_->batch.below_range();
+}
+std::size_t FrameRenderer::last_above_range() const {
+    return parts_->batch.above_range();
 }
 
 Image FrameRenderer::render(const Snapshot& frame) {
@@ -72,7 +85,8 @@ Image FrameRenderer::render(const Snapshot& frame) {
     p.spheres.upload(p.batch);
     p.spheres.draw(p.batch, camera);
     // The solids and the overlay, then the pixels read back.
-    return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, start, timings_);
+    return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
+                        timings_);
 }
 
 } // namespace sph

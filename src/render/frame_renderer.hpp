@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
 
 namespace sph {
 
@@ -36,7 +37,12 @@ class FrameRenderer {
     // skipped as outside the view.
     std::size_t last_drawn() const;
     std::size_t last_outside_view() const;
+    // Drawn particles of the last frame below and above the colour range.
+    std::size_t last_below_range() const;
+    std::size_t last_above_range() const;
     const RenderSettings& settings() const { return settings_; }
+    // Why the overlay's text is not in the font asked for (empty: it is).
+    const std::string& font_warning() const;
 
   private:
     struct Parts;

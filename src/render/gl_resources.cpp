@@ -158,7 +158,7 @@ RenderTarget::RenderTarget(int width, int height, int samples)
 void RenderTarget::begin() {
     glBindFramebuffer(GL_FRAMEBUFFER, msaa_.id());
     glViewport(0, 0, width_, height_);
-    glClearColor(0.08f, 0.09f, 0.11f, 1.f);
+    glClearColor(background[0], background[1], background[2], 1.f);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);

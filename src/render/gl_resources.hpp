@@ -66,6 +66,9 @@ Texture make_colour_map_texture(const std::string& name);
 // Binds it to texture unit 0, where the sphere and overlay programs read it.
 void bind_colour_map(const Texture& texture);
 
+// The frame's background (linear RGB), behind the scene and the overlay.
+inline constexpr float background[3] = {0.08f, 0.09f, 0.11f};
+
 // Where a frame is drawn: multisampled colour and depth, resolved into a
 // plain colour buffer to be read back.
 class RenderTarget {

@@ -3,10 +3,12 @@
 #include "render/text.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <embedded_shaders.hpp>
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <utility>
 
 namespace sph {
 
@@ -39,69 +41,195 @@ void FlatPainter::draw(const std::vector<OverlayVertex>& vertices, GLenum mode,
     glDrawArrays(mode, 0, GLsizei(vertices.size()));
 }
 
-Overlay::Overlay(const RenderSettings& settings, const FrameLayout& layout)
-    : layout_(layout), label_(settings.label), range_(settings.range) {}
-
-Overlay::BarPlace Overlay::bar_place() const {
-    // In the room on the right, below the caption.
-    const FrameLayout& l = layout_;
-    const float scale = l.text_scale;
-    return {.x = float(l.width - l.bar_space) + 8.f * scale,
-            .width = 9.f * scale,
-            .top = float(l.caption_space + l.margin) + 10.f * scale,
-            .bottom = float(l.height - l.margin) - 5.f * scale};
+Ticks round_ticks(double lo, double hi, int most) {
+    Ticks t;
+    if (hi < lo)
+        std::swap(lo, hi);
+    const double span = hi - lo;
+    if (!(span > 0) || !std::isfinite(span)) {
+        t.values = {lo};
+        t.labels = {fmt::format("{:.4g}", lo)};
+        return t;
+    }
+    // The smallest round step that leaves at most `most` ticks in the range.
+    double step = 0;
+    for (double power = std::pow(10.0, std::floor(std::log10(span / most))); step == 0; power *= 10)
+        for (const double m : {1.0, 2.0, 5.0})
+            if (step == 0 &&
+                std::floor(hi / (m * power) + 1e-9) - std::ceil(lo / (m * power) - 1e-9) + 1 <=
+                    most)
+                step = m * power;
+    const double first = std::ceil(lo / step - 1e-9), last = std::floor(hi / step + 1e-9);
+    for (double k = first; k <= last; ++k)
+        t.values.push_back(k * step == 0 ? 0.0 : k * step); // no "-0"
+    // One precision for every tick: the step's decimals, or powers of ten
+    // with the step's significant digits where fixed decimals would be long.
+    const double largest = std::max(std::abs(lo), std::abs(hi));
+    const int decimals = std::max(0, int(-std::floor(std::log10(step) + 1e-9)));
+    const bool scientific = largest >= 1e6 || decimals > 4;
+    const int digits = std::max(
+        0, int(std::floor(std::log10(largest) + 1e-9) - std::floor(std::log10(step) + 1e-9)));
+    for (const double v : t.values)
+        t.labels.push_back(scientific ? fmt::format("{:.{}e}", v, digits)
+                                      : fmt::format("{:.{}f}", v, decimals));
+    return t;
 }
 
-void Overlay::draw(const FlatPainter& painter, const Snapshot& frame) {
+std::string format_caption(const std::string& pattern, const Snapshot& frame) {
+    std::string out;
+    for (std::size_t k = 0; k < pattern.size();) {
+        auto take = [&](std::string_view name) {
+            if (pattern.compare(k, name.size(), name) != 0)
+                return false;
+            k += name.size();
+            return true;
+        };
+        if (take("{time}"))
+            out += fmt::format("{:.3f}", frame.time);
+        else if (take("{frame}"))
+            out += fmt::format("{}", frame.frame);
+        else if (take("{steps}"))
+            out += fmt::format("{}", frame.steps);
+        else
+            out += pattern[k++];
+    }
+    return out;
+}
+
+namespace {
+
+// Text sizes follow the image's height: legible at 180 px, not shouting at
+// 1080 (19 px at 720).
+float body_size(int height) {
+    return std::max(9.f, std::round(0.026f * float(height)));
+}
+
+const glm::vec4 text_colour{0.9f, 0.91f, 0.93f, 1.f};
+
+} // namespace
+
+Overlay::Overlay(const RenderSettings& s)
+    : height_(s.height), body_px_(body_size(s.height)), title_px_(std::round(1.3f * body_px_)),
+      label_(s.label), title_(s.title), caption_(s.caption), range_(s.range),
+      ticks_(round_ticks(s.range[0], s.range[1])) {
+    const std::string font = find_font(s.font, font_warning_);
+    std::string face_warning;
+    body_ = std::make_unique<TextFace>(font, int(body_px_), face_warning);
+    title_face_ = std::make_unique<TextFace>(font, int(title_px_), face_warning);
+    if (!face_warning.empty())
+        font_warning_ = face_warning;
+    // Above the scene: one line for the title and the caption, and a gap.
+    const TextFace& b = *body_;
+    const float line =
+        std::max(title_.empty() ? 0.f : title_face_->ascent() + title_face_->descent(),
+                 caption_.empty() ? 0.f : b.ascent() + b.descent());
+    room_.top = line > 0 ? line + 0.5 * body_px_ : 0;
+    // On the right: a gap, the bar, its ticks and their values, and the
+    // bar's title above it, whichever is wider.
+    float values = 0;
+    for (const std::string& label : ticks_.labels)
+        values = std::max(values, b.width(label));
+    const float gap = 0.9f * body_px_;
+    const float bar = gap + 0.9f * body_px_ + 0.4f * body_px_ + 0.35f * body_px_ + values;
+    room_.right = std::max(bar, gap + b.width(label_)) + 0.3f * body_px_;
+}
+
+float Overlay::BarPlace::y_of(double value, const std::array<double, 2>& range) const {
+    const double t = (value - range[0]) / (range[1] - range[0]);
+    return float(bottom + (top - bottom) * t);
+}
+
+Overlay::BarPlace Overlay::bar_place(const FrameLayout& l) const {
+    // In the band on the right, below the bar's title; the end values,
+    // centred on their ticks, stay inside the band.
+    const TextFace& b = *body_;
+    return {.x = float(l.right.x) + 0.9f * body_px_,
+            .width = 0.9f * body_px_,
+            .top = float(l.right.y) + b.ascent() + b.descent() + 0.3f * body_px_,
+            .bottom = float(l.right.bottom()) - 0.5f * b.cap_height()};
+}
+
+void Overlay::draw(const FlatPainter& painter, const Snapshot& frame, const FrameLayout& layout) {
     glDisable(GL_DEPTH_TEST);
     // Pixels, y down.
     const glm::mat4 pixels =
-        glm::ortho(0.f, float(layout_.width), float(layout_.height), 0.f, -1.f, 1.f);
-    const BarPlace bar = bar_place();
-    draw_colour_bar(painter, pixels, bar);
-    draw_text(painter, pixels, bar, frame);
+        glm::ortho(0.f, float(layout.width), float(layout.height), 0.f, -1.f, 1.f);
+    draw_backing(painter, pixels, layout);
+    draw_colour_bar(painter, pixels, layout);
+    draw_text(frame, pixels, layout);
+}
+
+void Overlay::draw_backing(const FlatPainter& painter, const glm::mat4& pixels,
+                           const FrameLayout& l) {
+    // The background over everything outside the scene's rectangle (and a
+    // little room for the spheres on its edges): a 3D splash or a close
+    // camera never runs under the bands' text.
+    const float pad = 0.3f * body_px_;
+    const float x0 = float(l.scene.x) - pad, y0 = float(l.scene.y) - pad;
+    const float x1 = float(l.scene.right()) + pad, y1 = float(l.scene.bottom()) + pad;
+    const float w = float(l.width), h = float(l.height);
+    triangles_.clear();
+    auto rect = [&](float ax, float ay, float bx, float by) {
+        if (bx <= ax || by <= ay)
+            return;
+        for (const auto& [x, y] :
+             {std::pair{ax, ay}, {bx, ay}, {bx, by}, {ax, ay}, {bx, by}, {ax, by}})
+            triangles_.push_back({x, y, 0, -1});
+    };
+    rect(0, 0, w, y0);
+    rect(0, y1, w, h);
+    rect(0, y0, x0, y1);
+    rect(x1, y0, w, y1);
+    painter.draw(triangles_, GL_TRIANGLES, pixels,
+                 {gl::background[0], gl::background[1], gl::background[2], 1.f});
 }
 
 void Overlay::draw_colour_bar(const FlatPainter& painter, const glm::mat4& pixels,
-                              const BarPlace& bar) {
+                              const FrameLayout& layout) {
+    const BarPlace bar = bar_place(layout);
     // The map from its low end at the bottom to its high end at the top.
     const float x0 = bar.x, x1 = bar.x + bar.width;
     triangles_ = {{x0, bar.bottom, 0, 0}, {x1, bar.bottom, 0, 0}, {x1, bar.top, 0, 1},
                   {x0, bar.bottom, 0, 0}, {x1, bar.top, 0, 1},    {x0, bar.top, 0, 1}};
     painter.draw(triangles_, GL_TRIANGLES, pixels, {1, 1, 1, 1});
-    // Its frame and five ticks on its right.
+    // Its frame, and a tick on its right at each round value.
     lines_ = {{x0, bar.top, 0, -1},    {x1, bar.top, 0, -1},    {x1, bar.top, 0, -1},
               {x1, bar.bottom, 0, -1}, {x1, bar.bottom, 0, -1}, {x0, bar.bottom, 0, -1},
               {x0, bar.bottom, 0, -1}, {x0, bar.top, 0, -1}};
-    for (int k = 0; k <= 4; ++k) {
-        const float y = bar.tick_y(k);
+    for (const double value : ticks_.values) {
+        const float y = std::round(bar.y_of(value, range_)) + 0.5f;
         lines_.push_back({x1, y, 0, -1});
-        lines_.push_back({x1 + 2.5f * layout_.text_scale, y, 0, -1});
+        lines_.push_back({x1 + 0.4f * body_px_, y, 0, -1});
     }
     painter.draw(lines_, GL_LINES, pixels, {0.85f, 0.86f, 0.88f, 1.f});
 }
 
-void Overlay::draw_text(const FlatPainter& painter, const glm::mat4& pixels, const BarPlace& bar,
-                        const Snapshot& frame) {
-    const FrameLayout& l = layout_;
-    const float scale = l.text_scale, glyph_h = 7.f * scale;
+void Overlay::draw_text(const Snapshot& frame, const glm::mat4& pixels, const FrameLayout& l) {
+    const BarPlace bar = bar_place(l);
+    const TextFace& b = *body_;
+    // The ticks' values, each centred on its tick, a gap after it.
     text_.clear();
-    // The ticks' values, the bar's title above it (kept inside the image),
-    // and the caption in the room on top.
-    for (int k = 0; k <= 4; ++k) {
-        const double value = range_[0] + (range_[1] - range_[0]) * k / 4.0;
-        append_text_triangles(fmt::format("{:.4g}", value), bar.x + bar.width + 4.5f * scale,
-                              bar.tick_y(k) - 0.5f * glyph_h, scale, text_);
+    const float values_x = bar.x + bar.width + 0.4f * body_px_ + 0.35f * body_px_;
+    for (std::size_t k = 0; k < ticks_.values.size(); ++k)
+        b.append(ticks_.labels[k], values_x,
+                 bar.y_of(ticks_.values[k], range_) + 0.5f * b.cap_height(), text_);
+    // The bar's title above it, from the bar's left edge.
+    b.append(label_, bar.x, float(l.right.y) + b.ascent(), text_);
+    // The title on the left of the band above the scene, the caption on
+    // its right (on its left when there is no title), on one baseline.
+    const float baseline = float(l.top.y) + std::max(title_.empty() ? 0.f : title_face_->ascent(),
+                                                     caption_.empty() ? 0.f : b.ascent());
+    if (!caption_.empty()) {
+        const std::string caption = format_caption(caption_, frame);
+        const float x = title_.empty() ? float(l.top.x) : float(l.top.right()) - b.width(caption);
+        b.append(caption, x, baseline, text_);
     }
-    const float label_w = text_width(label_, scale);
-    append_text_triangles(label_, std::min(bar.x, float(l.width) - label_w - 4.f * scale),
-                          bar.top - 2.5f * glyph_h, scale, text_);
-    append_text_triangles(fmt::format("t = {:.3f} s    frame {}", frame.time, frame.frame),
-                          float(l.margin), float(l.margin) * 0.5f + 2.f * scale, scale, text_);
-    triangles_.clear();
-    for (std::size_t k = 0; k + 1 < text_.size(); k += 2)
-        triangles_.push_back({text_[k], text_[k + 1], 0, -1});
-    painter.draw(triangles_, GL_TRIANGLES, pixels, {0.9f, 0.91f, 0.93f, 1.f});
+    text_painter_.draw(text_, b, pixels, text_colour);
+    if (!title_.empty()) {
+        text_.clear();
+        title_face_->append(title_, float(l.top.x), baseline, text_);
+        text_painter_.draw(text_, *title_face_, pixels, text_colour);
+    }
 }
 
 } // namespace sph

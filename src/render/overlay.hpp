@@ -1,16 +1,19 @@
 #pragma once
-// The overlay: the colour bar with its ticks, values and title, and the
-// caption (time and frame), drawn in pixels over the scene in the room the
-// layout reserves for them. Also the painter of flat lines and triangles
-// that the overlay and the scenery's outlines share.
+// The overlay: the colour bar with its ticks, values and title, a title line
+// and the caption, each in a band the layout reserves beside the scene
+// (OverlayRoom), on a backing of the background so nothing of the scene
+// runs under the text. Also the painter of flat lines and triangles that the
+// overlay and the scenery's outlines share.
 
 #include "render/camera.hpp"
 #include "render/gl_resources.hpp"
 #include "render/render_settings.hpp"
+#include "render/text.hpp"
 #include "sph/snapshot.hpp"
 
 #include <array>
 #include <glm/glm.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,30 +40,59 @@ class FlatPainter {
     gl::Buffer buffer_;
 };
 
+// Colour-bar ticks: values at round steps (1, 2 or 5 times a power of ten)
+// within [lo, hi], at most `most` of them and at least 2 where the range
+// allows, each written with the same number of decimals.
+struct Ticks {
+    std::vector<double> values;
+    std::vector<std::string> labels;
+};
+Ticks round_ticks(double lo, double hi, int most = 6);
+
+// The caption's text for `frame`: `pattern` with {time} (s, 3 decimals),
+// {frame} and {steps} replaced; anything else is kept as written.
+std::string format_caption(const std::string& pattern, const Snapshot& frame);
+
 class Overlay {
   public:
-    Overlay(const RenderSettings& settings, const FrameLayout& layout);
-    // Over whatever is drawn: no depth test from here on.
-    void draw(const FlatPainter& painter, const Snapshot& frame);
+    // Measures the text at the image's size (needs the GL context: the
+    // glyph atlases are textures).
+    explicit Overlay(const RenderSettings& settings);
+    // The room it asks for beside the scene.
+    OverlayRoom room() const { return room_; }
+    // Why the font was not the one asked for (empty: it was).
+    const std::string& font_warning() const { return font_warning_; }
+    bool font_from_file() const { return body_->from_font(); }
+
+    // Over whatever is drawn, in the layout's bands: no depth test from here on.
+    void draw(const FlatPainter& painter, const Snapshot& frame, const FrameLayout& layout);
 
   private:
-    // The colour bar's place, px: its left edge, width, top and bottom.
+    void draw_backing(const FlatPainter& painter, const glm::mat4& pixels,
+                      const FrameLayout& layout);
+    void draw_colour_bar(const FlatPainter& painter, const glm::mat4& pixels,
+                         const FrameLayout& layout);
+    void draw_text(const Snapshot& frame, const glm::mat4& pixels, const FrameLayout& layout);
+
+    // The bar's place in the right band, px.
     struct BarPlace {
         float x, width, top, bottom;
-        // The k-th of five ticks, from the bottom.
-        float tick_y(int k) const { return bottom + (top - bottom) * float(k) / 4.f; }
+        float y_of(double value, const std::array<double, 2>& range) const;
     };
-    BarPlace bar_place() const;
-    void draw_colour_bar(const FlatPainter& painter, const glm::mat4& pixels, const BarPlace& bar);
-    void draw_text(const FlatPainter& painter, const glm::mat4& pixels, const BarPlace& bar,
-                   const Snapshot& frame);
+    BarPlace bar_place(const FrameLayout& layout) const;
 
-    FrameLayout layout_;
-    std::string label_;
+    int height_;
+    float body_px_, title_px_;
+    std::string label_, title_, caption_;
     std::array<double, 2> range_;
+    Ticks ticks_;
+    std::string font_warning_;
+    std::unique_ptr<TextFace> body_, title_face_;
+    TextPainter text_painter_;
+    OverlayRoom room_;
     // Scratch reused from frame to frame.
     std::vector<OverlayVertex> lines_, triangles_;
-    std::vector<float> text_;
+    std::vector<TextVertex> text_;
 };
 
 } // namespace sph

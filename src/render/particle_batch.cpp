@@ -14,6 +14,7 @@ ParticleBatch::ParticleBatch(const RenderSettings& s, std::size_t groups)
       // silhouette, the mesh within the sphere. The margin covers the GPU's
       // float round-off.
       cull_margin_(1.01 * s.radius + 1e-6 * glm::length(s.domain_max - s.domain_min)),
+      range_{std::min(s.range[0], s.range[1]), std::max(s.range[0], s.range[1])},
       instances_(groups), counts_(groups, 0) {}
 
 ImageMeasures ParticleBatch::measures(const Camera& camera) const {

@@ -78,6 +78,10 @@ class ParticleBatch {
     // Particles drawn, in all groups, and those skipped as outside the view.
     std::size_t drawn() const;
     std::size_t outside_view() const { return outside_view_; }
+    // Drawn particles whose scalar lies below or above the colour range
+    // (drawn in the map's end colours).
+    std::size_t below_range() const { return below_range_; }
+    std::size_t above_range() const { return above_range_; }
 
   private:
     ImageMeasures measures(const Camera& camera) const;
@@ -86,10 +90,12 @@ class ParticleBatch {
     double radius_;
     bool cull_buried_, cull_outside_view_;
     double cull_margin_;
+    std::array<double, 2> range_;
     // Scratch reused from frame to frame, each group sized for every particle.
     std::vector<std::vector<float>> instances_;
     std::vector<std::size_t> counts_;
     std::size_t outside_view_ = 0;
+    std::size_t below_range_ = 0, above_range_ = 0;
 };
 
 // The renderer's rule (RenderSettings::triangles_below_px): impostors whose
@@ -114,6 +120,7 @@ void ParticleBatch::fill(const Snapshot& frame, const Camera& camera, GroupOf gr
         group.resize(n * 4);
     std::fill(counts_.begin(), counts_.end(), std::size_t(0));
     outside_view_ = 0;
+    below_range_ = above_range_ = 0;
     const std::array<glm::dvec4, 6> planes = view_planes(camera);
     const ImageMeasures m = measures(camera);
     const bool cull_buried = cull_buried_ && frame.buried.size() == n;
@@ -152,6 +159,8 @@ void ParticleBatch::fill(const Snapshot& frame, const Camera& camera, GroupOf gr
         } else {
             scalar = field[i];
         }
+        below_range_ += scalar < range_[0];
+        above_range_ += scalar > range_[1];
         const std::size_t group = group_of(SphereImage(p, inside, m));
         float* out = instances_[group].data() + 4 * counts_[group]++;
         for (int a = 0; a < 3; ++a)

@@ -7,6 +7,7 @@
 #include <array>
 #include <glm/glm.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sph {
@@ -14,13 +15,19 @@ namespace sph {
 struct RenderSettings {
     int width = 1280, height = 720; // px
     int dimension = 2;
-    std::string field = "velocity";    // velocity | density | pressure
-    std::string label = "speed (m/s)"; // the colour bar's title
+    std::string field = "velocity";                        // velocity | density | pressure
+    std::string label = "speed (m/s)";                     // the colour bar's title
+    std::string title;                                     // above the scene, left; empty: none
+    std::string caption = "t = {time} s    frame {frame}"; // format_caption's pattern; empty: none
+    std::string font; // a font file; empty: find_font's default
     std::string colour_map = "viridis";
     std::array<double, 2> range{0, 1}; // field values at the ends of the map
-    std::string spheres = "impostor";  // impostor | mesh
-    int mesh_subdivisions = 1;         // mesh: 80 triangles per sphere
-    double radius = 0.001;             // m, drawn sphere radius
+    // The key that set `range` ("render.range"), or empty when it is the
+    // field's default from the scene's physics (default_colour_range).
+    std::string range_key;
+    std::string spheres = "impostor"; // impostor | mesh
+    int mesh_subdivisions = 1;        // mesh: 80 triangles per sphere
+    double radius = 0.001;            // m, drawn sphere radius
     glm::dvec3 domain_min{0}, domain_max{1};
     std::vector<SceneObstacle> obstacles; // drawn solid (2D) or as wire outlines (3D)
     // Drawn as boxes (as box obstacles are) where their motion has them at
@@ -42,6 +49,17 @@ struct RenderSettings {
     // no pixel, so the frame is the same without them.
     bool cull_outside_view = true;
 };
+
+// The field's range when the scene sets none, from the scene's physics, the
+// same for the whole clip so a colour means the same in every frame
+// (docs/rendering.md, "Colour"): speed 0 .. the fastest a particle can get
+// by falling from the highest fluid or inlet (plus its initial or inlet
+// speed); pressure 0 .. the hydrostatic pressure under the deepest fluid (in
+// zero gravity the dynamic pressure of that speed); density rho0 (1 +- d),
+// d twice the flow's squared Mach number (v / c)^2 (c the sound speed), at
+// least 1%.
+// `field` is velocity, density or pressure.
+std::array<double, 2> default_colour_range(const Scene& scene, std::string_view field);
 
 // Settings from the scene's render section; ranges the scene leaves open come
 // from the scene's physics, so colours mean the same in every frame.

@@ -2,6 +2,7 @@
 
 #include "io/particle_export.hpp"
 
+#include <fmt/format.h>
 #include <memory>
 
 namespace sph {
@@ -11,12 +12,18 @@ namespace {
 // simulated, and bound the memory held (8 MiB a frame at 1920x1080).
 constexpr std::size_t encoder_queue_frames = 2;
 
+// A frame with more of its drawn particles outside the colour range than
+// this shows them in the map's end colours only: the range is likely wrong.
+constexpr double outside_range_share = 0.05;
+
 } // namespace
 
 RenderSink::RenderSink(std::unique_ptr<GlContext> context, const RenderSettings& settings,
                        std::filesystem::path png_folder, std::filesystem::path mp4_path, double fps,
                        const Mp4Options& mp4_options, EncodeThread encode)
     : context_(std::move(context)), renderer_(settings), png_folder_(std::move(png_folder)) {
+    if (!renderer_.font_warning().empty())
+        warnings_.push_back(renderer_.font_warning());
     if (!png_folder_.empty()) {
         std::filesystem::create_directories(png_folder_);
         png_ = std::make_unique<PngWriterThread>();
@@ -33,10 +40,32 @@ void RenderSink::write(const Snapshot& frame) {
     cost.render_s = renderer_.last_timings().draw_seconds;
     cost.readback_s = renderer_.last_timings().readback_seconds;
     costs_.push_back(cost);
+    check_range(frame);
     if (mp4_)
         mp4_->submit(image);
     if (png_)
         png_->submit(png_folder_ / (frame_stem(frame.frame) + ".png"), image);
+}
+
+void RenderSink::check_range(const Snapshot& frame) {
+    const std::size_t drawn = renderer_.last_drawn();
+    if (range_warned_ || drawn == 0)
+        return;
+    const double below = double(renderer_.last_below_range()) / double(drawn);
+    const double above = double(renderer_.last_above_range()) / double(drawn);
+    if (below + above <= outside_range_share)
+        return;
+    range_warned_ = true;
+    const RenderSettings& s = renderer_.settings();
+    const std::string from = s.range_key.empty()
+                                 ? "the default from the scene's physics; render.range sets another"
+                                 : "set by " + s.range_key;
+    warnings_.push_back(
+        fmt::format("frame {} (t = {:.3g} s): {:.0f}% of the drawn particles have a {} outside the "
+                    "colour range [{:.4g}, {:.4g}] ({:.0f}% below, {:.0f}% above; {}), shown in "
+                    "the map's end colours",
+                    frame.frame, frame.time, 100 * (below + above), s.label, s.range[0], s.range[1],
+                    100 * below, 100 * above, from));
 }
 
 std::vector<FrameCost> RenderSink::costs() const {

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace sph {
@@ -47,14 +48,21 @@ class RenderSink final : public FrameSink {
     // The encoder's times, totals included (none without a video).
     std::optional<Mp4WriterThread::Times> encode_times() const;
     bool encodes_on_worker() const { return mp4_ && mp4_->on_worker(); }
+    // What the frames showed that the user should know (run.json
+    // "warnings"), in the order they arose; each arises once a run.
+    const std::vector<std::string>& warnings() const { return warnings_; }
 
   private:
+    void check_range(const Snapshot& frame);
+
     std::unique_ptr<GlContext> context_;
     FrameRenderer renderer_;
     std::filesystem::path png_folder_;
     std::unique_ptr<PngWriterThread> png_;
     std::unique_ptr<Mp4WriterThread> mp4_;
     std::vector<FrameCost> costs_;
+    std::vector<std::string> warnings_;
+    bool range_warned_ = false;
 };
 
 } // namespace sph

@@ -1,19 +1,87 @@
 #pragma once
-// Labels drawn as geometry: stb_easy_font turns text into quads, which become
-// triangles in pixel coordinates (origin at the top left, y down).
+// Text for the overlay: a real font rasterised by FreeType once, at one
+// pixel size, into an atlas texture of anti-aliased glyphs (printable
+// ASCII), drawn as one textured quad per glyph on whole pixels so the
+// coverage FreeType computed reaches the image unchanged. Without a font
+// file the stb_easy_font bitmap glyphs stand in (solid quads), with a
+// warning: a run never fails for want of a font.
 
+#include "render/gl_resources.hpp"
+
+#include <array>
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
 namespace sph {
 
-// Appends x, y pairs (two triangles per quad) for `text` at (x, y), each
-// glyph pixel `scale` pixels wide.
-void append_text_triangles(std::string_view text, float x, float y, float scale,
-                           std::vector<float>& xy);
+// A vertex of a glyph quad: pixels (origin top left, y down) and atlas
+// texture coordinates.
+struct TextVertex {
+    float x, y, u, v;
+};
 
-// Width and height in pixels of `text` at `scale`.
-float text_width(std::string_view text, float scale);
-float text_height(std::string_view text, float scale);
+// The font file to use: `requested` (render.font) when it names a readable
+// file; else the first readable of default_font_paths(); else what
+// fontconfig's `fc-match` names for "DejaVu Sans"; else empty (the bitmap
+// font). Why a choice was not taken goes to `warning` (empty: none).
+std::string find_font(const std::string& requested, std::string& warning);
+// Where Debian (fonts-dejavu-core), Fedora and Arch put DejaVu Sans.
+const std::vector<std::string>& default_font_paths();
+
+class TextFace {
+  public:
+    // `pixel_size`: the em height in px. `font_file` empty or unreadable by
+    // FreeType: the bitmap font at about that size (and `warning` says why).
+    TextFace(const std::string& font_file, int pixel_size, std::string& warning);
+    ~TextFace();
+    TextFace(const TextFace&) = delete;
+    TextFace& operator=(const TextFace&) = delete;
+
+    bool from_font() const { return face_ != nullptr; }
+    // Pixels: the advance width of `text`, the height of a capital above the
+    // baseline, and the line's extent above and below it.
+    float width(std::string_view text) const;
+    float cap_height() const { return cap_height_; }
+    float ascent() const { return ascent_; }
+    float descent() const { return descent_; }
+    // Appends two triangles per glyph for `text`, its baseline starting at
+    // (x, baseline), snapped to whole pixels.
+    void append(std::string_view text, float x, float baseline, std::vector<TextVertex>& out) const;
+    // The glyph atlas (one channel: coverage), to bind while drawing.
+    const gl::Texture& atlas() const { return atlas_; }
+
+  private:
+    struct Glyph {
+        int left = 0, top = 0, width = 0, height = 0; // px, from the pen on the baseline
+        float advance = 0;                            // px
+        float u0 = 0, v0 = 0, u1 = 0, v1 = 0;         // in the atlas
+    };
+    void load_font(const std::string& file, int pixel_size, std::string& warning);
+    void make_bitmap_font(int pixel_size);
+
+    void* library_ = nullptr; // FT_Library
+    void* face_ = nullptr;    // FT_Face: kept for kerning
+    bool kerning_ = false;
+    std::array<Glyph, 95> glyphs_{}; // ' ' .. '~'
+    float bitmap_scale_ = 1;         // bitmap font: px per glyph pixel
+    float cap_height_ = 0, ascent_ = 0, descent_ = 0;
+    gl::Texture atlas_;
+};
+
+// Draws glyph quads in one colour, blended over the image.
+class TextPainter {
+  public:
+    TextPainter();
+    void draw(const std::vector<TextVertex>& vertices, const TextFace& face,
+              const glm::mat4& transform, const glm::vec4& colour) const;
+
+  private:
+    gl::Program program_;
+    gl::VertexArray vao_;
+    gl::Buffer buffer_;
+};
 
 } // namespace sph

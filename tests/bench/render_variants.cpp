@@ -63,7 +63,6 @@ void sort_by_depth(std::span<float> instances, const std::vector<float>& keys,
 
 // The renderer's parts (FrameRenderer::Parts) and the variants' own.
 struct VariantRenderer::Parts {
-    FrameLayout layout;
     gl::RenderTarget target;
     gl::Texture colour_map;
     OutlineRule outline_rule;
@@ -72,6 +71,7 @@ struct VariantRenderer::Parts {
     FlatPainter painter;
     Scenery scenery;
     Overlay overlay;
+    FrameLayout layout;
     // Flat discs: their program, and for points one vertex per instance.
     gl::Program disc_program;
     gl::VertexArray point_vao;
@@ -82,10 +82,10 @@ struct VariantRenderer::Parts {
     std::vector<std::uint32_t> class_starts;
 
     Parts(const RenderSettings& s, const DrawVariant& v)
-        : layout(layout_frame(s.width, s.height)), target(s.width, s.height, s.samples),
+        : target(s.width, s.height, s.samples),
           colour_map(gl::make_colour_map_texture(s.colour_map)), outline_rule(s), batch(s, groups),
           spheres(s, v.conservative_depth ? "#define CONSERVATIVE_DEPTH\n" : ""), scenery(s),
-          overlay(s, layout) {
+          overlay(s), layout(layout_frame(s.width, s.height, overlay.room(), scene_aspect(s))) {
         if (v.flat_below_px > 0) {
             const std::string defines = v.flat_as_points ? "#define POINTS\n" : "";
             disc_program = gl::link_program(shaders::sphere_disc_vert, shaders::sphere_disc_frag,
@@ -160,7 +160,8 @@ Image VariantRenderer::render(const Snapshot& frame) {
             p.spheres.draw_outlines(Outline::triangle, p.spheres.first(flat_group), flat);
         }
     }
-    return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, start, timings_);
+    return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
+                        timings_);
 }
 
 } // namespace sph

@@ -25,8 +25,11 @@ const KeyTable<Scene::Render>& render_keys() {
         {.path = "range",
          .field = &S::range,
          .unit = "field unit",
-         .doc = "Field values at the two ends of the colour map; by default speed 0..sqrt(2 g "
-                "H), density rho0 +- 3%, pressure 0..rho0 g H (H: domain height).",
+         .doc = "Field values at the two ends of the colour map, used as given for any field; by "
+                "default each field's own from the scene's physics: speed 0..v = sqrt(v0^2 + 2 "
+                "|g| H) (H: the highest fluid or inlet above the floor, v0 its speed), pressure "
+                "0..rho0 v^2 / 2, density rho0 (1 +- max(1%, 2 v^2 / c^2)). A frame with over 5% "
+                "of its particles outside warns.",
          .absent = "from the scene"},
         {.path = "spheres",
          .field = &S::spheres,
@@ -46,6 +49,20 @@ const KeyTable<Scene::Render>& render_keys() {
          .field = enum_field<&S::video_preset>(),
          .doc = "MP4 encoder speed: faster presets make larger files at the same quality.",
          .choices = video_preset_names()},
+        {.path = "title",
+         .field = &S::title,
+         .doc = "A title line above the scene, on the left.",
+         .absent = "none"},
+        {.path = "caption",
+         .field = &S::caption,
+         .doc = "The line above the scene (on the right, beside a title): {time} (s, 3 "
+                "decimals), {frame} and {steps} are replaced; empty: none.",
+         .absent = "t = {time} s    frame {frame}"},
+        {.path = "font",
+         .field = &S::font,
+         .doc = "Font file (TrueType/OpenType) for the overlay's text; a file that cannot be "
+                "read warns and the default is used.",
+         .absent = "DejaVu Sans (fonts-dejavu-core), else fc-match's, else a bitmap font"},
         {.path = "backend",
          .field = &S::backend,
          .doc = "Headless GL context.",

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -71,25 +72,69 @@ std::string message_of(const std::exception_ptr& error) {
     }
 }
 
-// run.json, rewritten whole (atomically) as the run starts and as it ends.
+// run.json, written whole as the run starts and as it ends, and readable
+// whenever the run ends, a full disk included (docs/contract.md, "A full
+// disk"). The final form is written atomically, so a reader never sees a torn
+// file. When that cannot be done for want of room (a new file's blocks, or
+// `ulimit -f`), it is written in place over the starting form instead
+// (write_file_in_place), which needs no free space: for that, the starting
+// form reserves room, padded with spaces after the JSON (which parsers skip)
+// to `final_room` bytes more than it needs. Written spaces, not fallocate():
+// they are real blocks on every filesystem, NFS and tmpfs included.
 struct RunRecord {
     json document;
     fs::path path;
-    // `ended`: the run is over (then "ended_utc" is written).
-    void save(const std::string& status, std::uint64_t frames, std::uint64_t steps,
-              double simulated, double wall, std::size_t particles, bool ended,
-              const std::string& error = {}) {
+    std::size_t reserved = 0; // bytes of the starting form, padding included
+
+    // More than the final form adds (status, counts, error, the stage table
+    // and the timing totals); per-frame timings that do not fit are dropped.
+    static constexpr std::size_t final_room = 16 << 10;
+
+    void start(std::size_t particles) {
+        document["status"] = "running";
+        document["frames"] = 0;
+        document["steps"] = 0;
+        document["simulated_time"] = 0;
+        document["wall_s"] = 0;
+        document["final_particles"] = particles;
+        std::string text = document.dump(2) + "\n";
+        text.append(final_room - 1, ' ');
+        text += '\n';
+        reserved = text.size();
+        write_file_atomically(path, text);
+    }
+
+    // How the final form was written: "" atomically, else a note for the
+    // user. Throws when it could not be written at all.
+    std::string finish(const std::string& status, std::uint64_t frames, std::uint64_t steps,
+                       double simulated, double wall, std::size_t particles,
+                       const std::string& error) {
         document["status"] = status;
         document["frames"] = frames;
         document["steps"] = steps;
         document["simulated_time"] = simulated;
         document["wall_s"] = wall;
         document["final_particles"] = particles;
-        if (ended)
-            document["ended_utc"] = utc_iso8601(std::chrono::system_clock::now());
+        document["ended_utc"] = utc_iso8601(std::chrono::system_clock::now());
         if (!error.empty())
             document["error"] = error;
-        write_file_atomically(path, document.dump(2) + "\n");
+        const std::string text = document.dump(2) + "\n";
+        try {
+            write_file_atomically(path, text);
+            return {};
+        } catch (const OutOfSpaceError&) {
+        }
+        // No room for a new file: over the reserved bytes, the per-frame
+        // timings dropped if the whole does not fit.
+        if (text.size() <= reserved) {
+            write_file_in_place(path, text);
+            return "rewritten in place, the disk being full";
+        }
+        document["timings"].erase("frames");
+        document["run_json"] = "written in place on a full disk; the per-frame timings were "
+                               "dropped for want of room";
+        write_file_in_place(path, document.dump(2) + "\n");
+        return "rewritten in place, the disk being full; its per-frame timings were dropped";
     }
 };
 
@@ -118,7 +163,7 @@ class ClipRun {
         sim_.set_output_fields(fields_);
         record_.path = folder_ / "run.json";
         record_.document = starting_document();
-        record_.save("running", 0, 0, 0, 0, sim_.state().size(), false);
+        record_.start(sim_.state().size());
         if (!options_.quiet)
             print_start();
     }
@@ -295,15 +340,31 @@ class ClipRun {
         // run failed, unless it had failed already (the first error is the
         // one to report) or a sink failed before a blow-up (then the failure
         // came first, as on the sequential path).
-        if (const std::exception_ptr sink_error = finish_sinks();
-            sink_error && end.status != RunStatus::failed)
-            end = {RunStatus::failed, message_of(sink_error), sink_error};
+        std::vector<std::exception_ptr> sink_errors = finish_sinks();
+        if (!sink_errors.empty() && end.status != RunStatus::failed) {
+            end = {RunStatus::failed, message_of(sink_errors.front()), sink_errors.front()};
+            sink_errors.erase(sink_errors.begin());
+        }
+        const bool out_of_space = is_out_of_space_error(end.exception);
+        if (out_of_space)
+            end.error = "out of disk space: " + end.error;
         const double seconds = wall();
         const std::vector<StageRow> stages = record_timings(seconds);
         if (render_ && !render_->warnings().empty())
             record_.document["warnings"] = render_->warnings();
-        record_.save(status_name(end.status), written_, sim_.steps(), sim_.time(), seconds,
-                     sim_.state().size(), true, end.error);
+        std::string run_json_note;
+        try {
+            run_json_note = record_.finish(status_name(end.status), written_, sim_.steps(),
+                                           sim_.time(), seconds, sim_.state().size(), end.error);
+        } catch (const std::exception& e) {
+            if (!out_of_space)
+                throw;
+            run_json_note = fmt::format("lost, it says \"running\": {}", e.what());
+        }
+        if (out_of_space) {
+            report_out_of_space(end.error, sink_errors, run_json_note);
+            return exit_failure;
+        }
         switch (end.status) {
         case RunStatus::completed:
             if (!options_.quiet)
@@ -327,19 +388,96 @@ class ClipRun {
         std::rethrow_exception(end.exception);
     }
 
+    // Whole files in `folder`, temporaries left out.
+    static std::size_t count_files(const fs::path& folder) {
+        std::error_code ec;
+        std::size_t count = 0;
+        for (const auto& entry : fs::directory_iterator(folder, ec))
+            count += entry.path().extension() != ".partial";
+        return count;
+    }
+
+    static long count_lines(const fs::path& path) {
+        std::FILE* file = std::fopen(path.c_str(), "rb");
+        if (!file)
+            return 0;
+        long lines = 0;
+        for (int c; (c = std::getc(file)) != EOF;)
+            lines += c == '\n';
+        std::fclose(file);
+        return lines;
+    }
+
+    static bool is_out_of_space_error(const std::exception_ptr& error) {
+        if (!error)
+            return false;
+        try {
+            std::rethrow_exception(error);
+        } catch (const OutOfSpaceError&) {
+            return true;
+        } catch (...) {
+            return false;
+        }
+    }
+
+    // A full disk: what stopped the run, what each output kept, what was lost
+    // (`sink_errors`: the errors as the outputs were finished, after the one
+    // that ended the run).
+    void report_out_of_space(const std::string& error,
+                             const std::vector<std::exception_ptr>& sink_errors,
+                             const std::string& run_json_note) const {
+        std::vector<std::string> kept, lost;
+        // Counted, not inferred: the PNGs and the video are written on
+        // worker threads, which lag the frame loop.
+        kept.push_back(fmt::format("stats.csv ({} rows)", count_lines(folder_ / "stats.csv") - 1));
+        if (!options_.exports.empty())
+            kept.push_back(
+                fmt::format("particles/ ({} files)", count_files(folder_ / "particles")));
+        if (render_ && options_.png)
+            kept.push_back(fmt::format("frames/ ({} PNGs)", count_files(folder_ / "frames")));
+        if (render_ && options_.mp4) {
+            if (fs::exists(folder_ / "clip.mp4"))
+                kept.push_back("clip.mp4 (the frames so far, playable)");
+            else if (written_ == 0)
+                lost.push_back("clip.mp4: no frame was written");
+            else
+                lost.push_back(
+                    "clip.mp4: its frames and index could not all be written, and an MP4 "
+                    "without its index does not play, so it was removed");
+        }
+        if (run_json_note.empty())
+            kept.push_back("run.json (status \"failed\", with the reason)");
+        else if (run_json_note.starts_with("lost"))
+            lost.push_back("run.json: " + run_json_note);
+        else
+            kept.push_back(
+                fmt::format("run.json (status \"failed\", with the reason; {})", run_json_note));
+        if (written_ < frames_)
+            lost.push_back(
+                fmt::format("frames {} to {}: the run stopped at t = {:.4g} s of {:.4g} s",
+                            written_, frames_ - 1, sim_.time(), scene_.duration));
+        for (const auto& sink_error : sink_errors)
+            if (const std::string message = message_of(sink_error);
+                error.find(message) == std::string::npos) // the same error, seen again
+                lost.push_back(message);
+        say(stderr, "sphclip: error: {}\nsphclip: the run stopped; kept in {}: {}\n", error,
+            folder_.string(), fmt::join(kept, ", "));
+        for (const auto& line : lost)
+            say(stderr, "sphclip: lost: {}\n", line);
+    }
+
     // Every sink is finished, even after one fails (so the video is
-    // finalised whatever happens); returns the first error.
-    std::exception_ptr finish_sinks() {
-        std::exception_ptr error;
+    // finalised whatever happens); returns their errors, the first first.
+    std::vector<std::exception_ptr> finish_sinks() {
+        std::vector<std::exception_ptr> errors;
         for (auto& sink : sinks_) {
             try {
                 sink->finish();
             } catch (...) {
-                if (!error)
-                    error = std::current_exception();
+                errors.push_back(std::current_exception());
             }
         }
-        return error;
+        return errors;
     }
 
     // run.json "timings" (per frame and in all) and "stages"; returns the

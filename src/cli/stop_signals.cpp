@@ -24,11 +24,19 @@ StopSignals::StopSignals() {
     action.sa_flags = SA_RESTART;
     for (std::size_t k = 0; k < std::size(signals); ++k)
         sigaction(signals[k], &action, &previous_[k]);
+    // SIGXFSZ ignored: a write past the file-size limit (`ulimit -f`) then
+    // fails with EFBIG, which the run reports as a full disk and survives
+    // (docs/contract.md), instead of the process being killed with a core.
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    sigaction(SIGXFSZ, &ignore, &previous_file_size_);
 }
 
 StopSignals::~StopSignals() {
     for (std::size_t k = 0; k < std::size(signals); ++k)
         sigaction(signals[k], &previous_[k], nullptr);
+    sigaction(SIGXFSZ, &previous_file_size_, nullptr);
 }
 
 int StopSignals::received() {

@@ -4,7 +4,9 @@
 // `sphclip run` finishes its outputs and exits 130, and `study` and
 // `validate` ask their child runs to stop and report what ran
 // (docs/contract.md, "Signals"). main() installs the guard before anything
-// else, so a signal during start-up is not lost either.
+// else, so a signal during start-up is not lost either. SIGXFSZ is ignored
+// meanwhile: a file past `ulimit -f` is then a write error (EFBIG), reported
+// like a full disk.
 
 #include <csignal>
 #include <iterator>
@@ -29,6 +31,7 @@ class StopSignals {
 
   private:
     struct sigaction previous_[std::size(signals)]{};
+    struct sigaction previous_file_size_ {}; // SIGXFSZ's, ignored while the guard lives
 };
 
 } // namespace sph

@@ -12,27 +12,80 @@
 
 namespace sph {
 
+bool is_out_of_space(int error) {
+    return error == ENOSPC || error == EDQUOT || error == EFBIG;
+}
+
+void throw_write_error(const std::filesystem::path& path, int error) {
+    const std::string message = fmt::format("cannot write {}: {}", path.string(),
+                                            error ? std::strerror(error) : "unknown error");
+    if (is_out_of_space(error))
+        throw OutOfSpaceError(path, error, message);
+    throw std::runtime_error(message);
+}
+
+namespace {
+
+// Writes all of `content` at `offset`; the errno of a failure, 0 on success.
+int write_all(int fd, std::string_view content, off_t offset) {
+    while (!content.empty()) {
+        const ssize_t n = ::pwrite(fd, content.data(), content.size(), offset);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            return n < 0 ? errno : ENOSPC;
+        content.remove_prefix(std::size_t(n));
+        offset += n;
+    }
+    return 0;
+}
+
+} // namespace
+
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
     const std::filesystem::path temporary = path.string() + ".partial";
     // O_NOFOLLOW: a link planted at the temporary name is not written through.
     const int fd =
         ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
-    std::FILE* f = fd >= 0 ? ::fdopen(fd, "wb") : nullptr;
-    if (!f && fd >= 0)
-        ::close(fd);
-    if (!f)
-        throw std::runtime_error("cannot write " + temporary.string() + ": " +
-                                 std::strerror(errno));
-    const bool written = std::fwrite(content.data(), 1, content.size(), f) == content.size();
-    const bool closed = std::fclose(f) == 0;
-    if (!written || !closed) {
+    if (fd < 0)
+        throw_write_error(temporary, errno);
+    int error = write_all(fd, content, 0);
+    if (::close(fd) != 0 && error == 0)
+        error = errno;
+    if (error != 0) {
+        // Removed: a half-written file is never left, and its blocks are free again.
         std::remove(temporary.c_str());
-        throw std::runtime_error("cannot write " + path.string() + " (disk full?)");
+        throw_write_error(path, error);
     }
     std::error_code ec;
     std::filesystem::rename(temporary, path, ec);
     if (ec)
         throw std::runtime_error("cannot rename " + temporary.string() + ": " + ec.message());
+}
+
+void write_file_in_place(const std::filesystem::path& path, std::string_view content) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0)
+        throw std::runtime_error(
+            fmt::format("cannot rewrite {}: {}", path.string(), std::strerror(errno)));
+    struct stat info {};
+    int error = ::fstat(fd, &info) != 0 ? errno : 0;
+    if (error == 0 && (!S_ISREG(info.st_mode) || std::uint64_t(info.st_size) < content.size())) {
+        ::close(fd);
+        throw std::runtime_error(fmt::format("cannot rewrite {} in place: {} bytes do not fit in "
+                                             "its {}",
+                                             path.string(), content.size(),
+                                             format_bytes(double(info.st_size))));
+    }
+    if (error == 0)
+        error = write_all(fd, content, 0);
+    if (error == 0 && ::ftruncate(fd, off_t(content.size())) != 0)
+        error = errno;
+    if (::close(fd) != 0 && error == 0)
+        error = errno;
+    if (error != 0)
+        throw std::runtime_error(
+            fmt::format("cannot rewrite {}: {}", path.string(), std::strerror(error)));
 }
 
 std::string format_bytes(double bytes) {

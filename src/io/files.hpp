@@ -10,9 +10,37 @@
 
 namespace sph {
 
+// A write that failed for want of room: the disk or the user's quota is full
+// (ENOSPC, EDQUOT), or the file would pass the process's file-size limit
+// (EFBIG, `ulimit -f`). A run that meets one stops and says what it kept
+// (docs/contract.md, "A full disk").
+struct OutOfSpaceError : std::runtime_error {
+    std::filesystem::path path;
+    int error; // the errno
+    OutOfSpaceError(std::filesystem::path path_, int error_, const std::string& message)
+        : std::runtime_error(message), path(std::move(path_)), error(error_) {}
+};
+
+// True for the errno values of OutOfSpaceError.
+bool is_out_of_space(int error);
+
+// Throws OutOfSpaceError when `error` is one, else std::runtime_error:
+// "cannot write PATH: REASON".
+[[noreturn]] void throw_write_error(const std::filesystem::path& path, int error);
+
 // Writes to a temporary name beside `path`, then renames: readers see the old
-// file or the whole new one. Throws std::runtime_error naming the path.
+// file or the whole new one. Throws OutOfSpaceError or std::runtime_error
+// naming the path; the temporary is removed then.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
+
+// Overwrites the existing regular file `path` from its first byte and cuts it
+// to `content`'s length; `content` must fit in the file's present size.
+// Rewriting bytes a file already holds and shrinking it need no free space
+// where the filesystem overwrites in place (ext4, XFS, tmpfs; not the
+// copy-on-write btrfs or ZFS), and no file grows, so `ulimit -f` is not met
+// either: this works on a full disk, where write_file_atomically cannot. Not
+// atomic: a reader may see a mix while it runs. Throws std::runtime_error.
+void write_file_in_place(const std::filesystem::path& path, std::string_view content);
 
 // The largest input of each kind that sphclip reads (docs: "Input limits").
 // Far above any real file of the kind; what they stop is a device, a pipe or

@@ -1,5 +1,6 @@
 #include "io/mp4_writer.hpp"
 
+#include "io/files.hpp"
 #include "io/libav_handles.hpp"
 
 extern "C" {
@@ -30,12 +31,16 @@ std::string av_error_text(int error) {
     return text;
 }
 
-// Returns `result`, or throws naming the video and libav's reason.
+// Returns `result`, or throws naming the video and libav's reason; a full
+// disk (or `ulimit -f`) as OutOfSpaceError, which a run reports as such.
 int check(int result, const std::filesystem::path& path, std::string_view doing) {
-    if (result < 0)
-        throw std::runtime_error(fmt::format("cannot write video {}: {}: {}", path.string(), doing,
-                                             av_error_text(result)));
-    return result;
+    if (result >= 0)
+        return result;
+    const std::string message =
+        fmt::format("cannot write video {}: {}: {}", path.string(), doing, av_error_text(result));
+    if (is_out_of_space(AVUNERROR(result)))
+        throw OutOfSpaceError(path, AVUNERROR(result), message);
+    throw std::runtime_error(message);
 }
 
 struct FormatContextDeleter {

@@ -1,10 +1,13 @@
 #include "io/stats_csv.hpp"
 
+#include "io/files.hpp"
 #include "sph/state_hash.hpp"
 
+#include <cerrno>
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <stdexcept>
+#include <stdio_ext.h>
 #include <unistd.h>
 
 namespace sph {
@@ -17,9 +20,11 @@ StatsCsv::StatsCsv(const std::filesystem::path& path) : path_(path) {
     if (!file_ && fd >= 0)
         ::close(fd);
     if (!file_)
-        throw std::runtime_error("cannot write " + path.string());
+        throw_write_error(path, errno);
     fmt::print(file_, "{}\n", header);
-    std::fflush(file_);
+    if (std::fflush(file_) != 0)
+        throw_write_error(path, errno);
+    complete_bytes_ = std::ftell(file_);
 }
 
 StatsCsv::~StatsCsv() {
@@ -27,13 +32,14 @@ StatsCsv::~StatsCsv() {
 }
 
 void StatsCsv::write(const Snapshot& f) {
+    if (!file_)
+        throw std::logic_error("cannot write " + path_.string() + ": closed after an error");
     const FrameStats& s = f.stats;
     // dt columns: the mean, smallest and largest step since the previous
     // frame; iterations: per step, averaged over the same steps.
     const StepCounters& c = f.steps_taken;
     const Real per_step = c.steps ? 1 / Real(c.steps) : 0;
-    fmt::print(
-        file_,
+    const std::string row = fmt::format(
         "{},{:.9g},{},{:.6g},{},{:.9g},{:.9g},{:.6g},{:.6g},{:.9g},{:.9g},{:.6g},{:.6g},{:.4g},"
         "{:.4g},{},{},{:016x},{:.3f}\n",
         f.frame, f.time, f.steps, c.dt_mean(), s.particles, s.density_avg, s.density_max,
@@ -41,8 +47,20 @@ void StatsCsv::write(const Snapshot& f) {
         c.steps ? c.dt_min : 0, c.dt_max, Real(c.pressure_iterations) * per_step,
         Real(c.divergence_iterations) * per_step, c.retries, c.obstacle_pushes, state_hash(f),
         f.wall_seconds);
-    if (std::fflush(file_) != 0)
-        throw std::runtime_error("cannot write " + path_.string() + " (disk full?)");
+    if (std::fwrite(row.data(), 1, row.size(), file_) != row.size() || std::fflush(file_) != 0) {
+        const int error = errno;
+        // What stdio still holds is dropped, so closing writes no more, and
+        // the part of the row that reached the file is cut off (shrinking
+        // needs no room): the file ends with the last whole row.
+        __fpurge(file_);
+        if (::ftruncate(fileno(file_), complete_bytes_) != 0) {
+            // Left as it is: the last row may then be cut short.
+        }
+        std::fclose(file_);
+        file_ = nullptr;
+        throw_write_error(path_, error);
+    }
+    complete_bytes_ = std::ftell(file_);
 }
 
 void StatsCsv::finish() {

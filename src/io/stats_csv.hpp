@@ -24,6 +24,7 @@ class StatsCsv final : public FrameSink {
   private:
     std::filesystem::path path_;
     std::FILE* file_ = nullptr;
+    long complete_bytes_ = 0; // the header and every whole row written
 };
 
 } // namespace sph

@@ -9,8 +9,10 @@
 // EFBIG as on a full disk. sphclip itself ignores SIGXFSZ; the test leaves the
 // signal's default (kill) in the child, so a run that did not would die.
 
+#include "support/run_limited.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
+#include "support/text.hpp"
 
 extern "C" {
 #include <libavformat/avformat.h>
@@ -31,12 +33,15 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using sph::test::contains;
 using sph::test::read_text;
 using sph::test::TempFolder;
 using sph::test::write_text;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
+sph::test::LimitedRun run_with_file_size_limit(const TempFolder& tmp,
+                                               const std::vector<std::string>& args,
+                                               rlim_t max_bytes) {
+    return sph::test::run_with_limit(tmp, args, RLIMIT_FSIZE, max_bytes);
 }
 
 // A small 2D tank, 36 particles, many quick frames; `size` the frame side.
@@ -48,40 +53,6 @@ std::string tank_scene(int size) {
            std::to_string(size) + ", " + std::to_string(size) + R"(]},
     "duration": 5, "fps": 200
 })";
-}
-
-struct LimitedRun {
-    int exit_code = -1; // 128 + signal when killed
-    std::string output;
-};
-
-// `sphclip ARGS...` with every file it writes limited to `max_bytes`.
-LimitedRun run_with_file_size_limit(const TempFolder& tmp, const std::vector<std::string>& args,
-                                    rlim_t max_bytes) {
-    const fs::path log = tmp / "sphclip.log";
-    const pid_t pid = fork();
-    REQUIRE(pid >= 0);
-    if (pid == 0) {
-        const int log_fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(log_fd, STDOUT_FILENO);
-        dup2(log_fd, STDERR_FILENO);
-        signal(SIGXFSZ, SIG_DFL);
-        const rlimit limit{max_bytes, max_bytes};
-        setrlimit(RLIMIT_FSIZE, &limit);
-        setenv("OMP_WAIT_POLICY", "passive", 1);
-        std::vector<char*> argv{const_cast<char*>(SPHCLIP_EXE)};
-        for (const auto& a : args)
-            argv.push_back(const_cast<char*>(a.c_str()));
-        argv.push_back(nullptr);
-        execv(SPHCLIP_EXE, argv.data());
-        _exit(127);
-    }
-    int status = 0;
-    waitpid(pid, &status, 0);
-    LimitedRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    result.output = read_text(log);
-    return result;
 }
 
 // The video's frame count, or -1 when it does not open and decode as an MP4.

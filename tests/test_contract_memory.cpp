@@ -4,8 +4,10 @@
 // is written, naming that limit.
 
 #include "io/memory_limit.hpp"
+#include "support/run_limited.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
+#include "support/text.hpp"
 
 #include <catch2/catch.hpp>
 #include <fcntl.h>
@@ -19,12 +21,15 @@
 namespace {
 
 namespace fs = std::filesystem;
+using sph::test::contains;
 using sph::test::read_text;
 using sph::test::TempFolder;
 using sph::test::write_text;
 
-bool contains(const std::string& text, const std::string& part) {
-    return text.find(part) != std::string::npos;
+sph::test::LimitedRun run_with_address_space(const TempFolder& tmp,
+                                             const std::vector<std::string>& args,
+                                             rlim_t max_bytes) {
+    return sph::test::run_with_limit(tmp, args, RLIMIT_AS, max_bytes);
 }
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -38,39 +43,6 @@ constexpr bool address_sanitizer = false;
 #else
 constexpr bool address_sanitizer = false;
 #endif
-
-struct LimitedRun {
-    int exit_code = -1; // 128 + signal when killed
-    std::string output;
-};
-
-// `sphclip ARGS...` with its address space limited to `max_bytes` (ulimit -v).
-LimitedRun run_with_address_space(const TempFolder& tmp, const std::vector<std::string>& args,
-                                  rlim_t max_bytes) {
-    const fs::path log = tmp / "sphclip.log";
-    const pid_t pid = fork();
-    REQUIRE(pid >= 0);
-    if (pid == 0) {
-        const int log_fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(log_fd, STDOUT_FILENO);
-        dup2(log_fd, STDERR_FILENO);
-        const rlimit limit{max_bytes, max_bytes};
-        setrlimit(RLIMIT_AS, &limit);
-        setenv("OMP_WAIT_POLICY", "passive", 1);
-        std::vector<char*> argv{const_cast<char*>(SPHCLIP_EXE)};
-        for (const auto& a : args)
-            argv.push_back(const_cast<char*>(a.c_str()));
-        argv.push_back(nullptr);
-        execv(SPHCLIP_EXE, argv.data());
-        _exit(127);
-    }
-    int status = 0;
-    waitpid(pid, &status, 0);
-    LimitedRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    result.output = read_text(log);
-    return result;
-}
 
 const std::string square_scene = R"({
     "domain": {"min": [0, 0], "max": [1, 1]},

@@ -165,18 +165,18 @@ TEST_CASE("a study keeps going past unstable runs, compared with the finest run"
     TempFolder tmp;
     write_text(tmp / "tiny.json", tiny_scene);
     const fs::path out = tmp / "study";
-    // Gravity of 1e300 m/s^2 overflows the speed in the first step, whatever
+    // Gravity of 1e20 m/s^2 throws particles past h in the first step, whatever
     // the solver: those runs exit 3 at once. Vectors are varied too.
     const auto result =
         run_sphclip(tmp, {"study", (tmp / "tiny.json").string(), "--vary", "solver.dt=1e-4,2e-4",
-                          "--vary", "effects.gravity=[0,-9.81],[0,-1e300]", "--metric", "com",
+                          "--vary", "effects.gravity=[0,-9.81],[0,-1e20]", "--metric", "com",
                           "--jobs", "2", "--out", out.string()});
     INFO(result.output);
     REQUIRE(result.exit_code == 0);
     const auto csv = read_text_csv(out / "study.csv");
     REQUIRE(csv.rows.size() == 4);
     CHECK(csv.at(0, "solver.dt") == "1e-4");
-    CHECK(csv.at(1, "effects.gravity") == "[0,-1e300]");
+    CHECK(csv.at(1, "effects.gravity") == "[0,-1e20]");
     for (std::size_t row : {0, 2})
         CHECK(csv.at(row, "status") == "ok");
     for (std::size_t row : {1, 3}) {
@@ -189,7 +189,7 @@ TEST_CASE("a study keeps going past unstable runs, compared with the finest run"
     CHECK(std::stod(csv.at(0, "error")) == 0);
     CHECK(std::stod(csv.at(2, "error")) > 0);
     CHECK(csv.at(2, "pareto") == "yes");
-    CHECK(fs::exists(out / "runs" / "01_solver.dt=1e-4_effects.gravity=_0_-1e300_"));
+    CHECK(fs::exists(out / "runs" / "01_solver.dt=1e-4_effects.gravity=_0_-1e20_"));
     CHECK_THAT(read_text(out / "study.md"), Catch::Contains("unstable"));
     CHECK(sph::test::is_png(out / "study.png"));
 }

@@ -24,6 +24,7 @@
 #include <optional>
 #include <string>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 namespace sph {
@@ -279,6 +280,14 @@ class ClipRun {
                 return {RunStatus::interrupted,
                         fmt::format("stopped by signal {}", StopSignals::received()), nullptr};
             take_snapshot(k);
+            // No stats row or export ever holds inf or NaN: such a frame
+            // ends the run as unstable before any of it is written.
+            if (std::string bad = non_finite_in_snapshot(); !bad.empty())
+                return {RunStatus::unstable,
+                        fmt::format("frame {} (t = {:.4g} s, step {}) holds a non-finite value: "
+                                    "{}; none of the frame was written",
+                                    k, sim_.time(), sim_.steps(), bad),
+                        nullptr};
             write_snapshot();
             progress_.update(k, frames_, sim_.time(), sim_.steps(), wall());
         }
@@ -311,6 +320,41 @@ class ClipRun {
         if (render_ && D == 3 && scene_.render.cull_buried)
             mark_buried(sim_.state(), sim_.neighbours(), scene_.fluid.spacing, snapshot_.buried);
         frame_fields_s_ += seconds_since(start);
+    }
+
+    // The first non-finite value of the frame's statistics and particle
+    // fields, named; "" when all are finite.
+    std::string non_finite_in_snapshot() const {
+        const FrameStats& stats = snapshot_.stats;
+        const std::pair<const char*, double> totals[] = {
+            {"density_avg", stats.density_avg},
+            {"density_max", stats.density_max},
+            {"density_error_avg_pct", stats.density_error_avg_pct},
+            {"density_error_max_pct", stats.density_error_max_pct},
+            {"kinetic_energy", stats.kinetic_energy},
+            {"max_speed", stats.max_speed},
+        };
+        for (const auto& [name, value] : totals)
+            if (!std::isfinite(value))
+                return fmt::format("{} = {}", name, value);
+        const std::pair<const char*, const std::vector<Real>*> fields[] = {
+            {"position", &snapshot_.position},
+            {"velocity", &snapshot_.velocity},
+            {"density", &snapshot_.density},
+            {"pressure", &snapshot_.pressure},
+        };
+        for (const auto& [name, values] : fields) {
+            const std::size_t per_particle =
+                values->size() / std::max<std::size_t>(snapshot_.id.size(), 1);
+            for (std::size_t i = 0; i < values->size(); ++i)
+                if (!std::isfinite((*values)[i]))
+                    return fmt::format("particle {} has {} = {}",
+                                       snapshot_.id.empty() || per_particle == 0
+                                           ? i
+                                           : std::size_t(snapshot_.id[i / per_particle]),
+                                       name, (*values)[i]);
+        }
+        return {};
     }
 
     void write_snapshot() {

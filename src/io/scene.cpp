@@ -488,6 +488,7 @@ void check_size(const FieldReader& r, const Scene& s, double h) {
 // Extreme but valid values can still give derived ones a run cannot use.
 void check_derived(const FieldReader& r, const Scene& s, double h) {
     const Derived derived = derive(s);
+    const int dim = s.dimension;
     if (!(std::isfinite(derived.mass) && derived.mass > 0))
         r.fail("material.rest_density",
                fmt::format("the particle mass rho0 / (sum of W on the lattice) is {} kg for "
@@ -499,6 +500,74 @@ void check_derived(const FieldReader& r, const Scene& s, double h) {
             fmt::format("the speed of sound sqrt(K / rho0) overflows for K = {} Pa and rho0 = {} "
                         "kg/m^3",
                         s.material.bulk_modulus, s.material.rest_density));
+    // Every derived quantity a step or a stats row multiplies must be far
+    // from the ends of the precision the run computes in (single in 2D by
+    // default): 1e6 of room each way, so that their products in a step stay
+    // finite and nonzero, and no frame (frame 0 is written before any step)
+    // holds inf, NaN or a value flushed to 0.
+    const bool single = derived.precision == Precision::single;
+    const double largest = (single ? 3.4028234663852886e38 : 1.7976931348623157e308) * 1e-6;
+    const double smallest = (single ? 1.1754943508222875e-38 : 2.2250738585072014e-308) * 1e6;
+    const auto within = [&](double value, bool zero_allowed) {
+        const double size = std::abs(value);
+        return std::isfinite(value) && size <= largest &&
+               (size >= smallest || (zero_allowed && size == 0));
+    };
+    const auto refuse = [&](const std::string& key, const std::string& quantity, double value) {
+        r.fail(key, fmt::format("{} is {:.3g}, beyond what the run can compute with (magnitudes "
+                                "{:.3g} to {:.3g} in {} precision); give values nearer to each "
+                                "other",
+                                quantity, value, smallest, largest, single ? "single" : "double"));
+    };
+    const double volume = std::pow(s.fluid.spacing, dim);
+    const double density = derived.mass / volume; // about the density a lattice particle gets
+    const std::string mass_key = s.fluid.mass ? "fluid.mass" : "material.rest_density";
+    if (!within(derived.mass, false))
+        refuse(mass_key, "the particle mass", derived.mass);
+    if (!within(density, false))
+        refuse(mass_key, "the density a particle gets, its mass / fluid.spacing^d,", density);
+    if (!within(s.material.rest_density, false))
+        refuse("material.rest_density", "material.rest_density", s.material.rest_density);
+    if (!within(derived.sound_speed, false) ||
+        !within(derived.sound_speed * derived.sound_speed, false))
+        refuse("material.bulk_modulus", "the speed of sound sqrt(K / rho0)", derived.sound_speed);
+    // The pressure of a fluid compressed tenfold, Tait's law at gamma = 7.
+    if (!within(s.material.bulk_modulus * 1e7, false))
+        refuse("material.bulk_modulus",
+               "the pressure scale K (rho / rho0)^7 at tenfold "
+               "compression",
+               s.material.bulk_modulus * 1e7);
+    if (!within(derived.dt, false))
+        refuse(s.solver.dt ? "solver.dt" : "material.bulk_modulus", "the time step", derived.dt);
+    // A fixed step far below the clip's length never finishes: a billion
+    // steps is days even at the fastest step this program takes.
+    constexpr double max_steps = 1e9;
+    if (s.solver.dt && s.duration / *s.solver.dt > max_steps)
+        r.fail("solver.dt",
+               fmt::format("{:.3g} s over a duration of {:.3g} s is {:.3g} steps, more "
+                           "than the {:.0e} a run may take; give a larger step or "
+                           "leave it out (adaptive)",
+                           *s.solver.dt, s.duration, s.duration / *s.solver.dt, max_steps));
+    for (std::size_t i = 0; i < s.fluid.blocks.size(); ++i) {
+        double v2 = 0;
+        for (int a = 0; a < dim; ++a)
+            v2 += s.fluid.blocks[i].velocity[a] * s.fluid.blocks[i].velocity[a];
+        const double energy =
+            0.5 * derived.mass * v2 * double(std::max<std::size_t>(derived.particles, 1));
+        if (!within(v2, true) || !within(energy, true))
+            refuse(fmt::format("fluid.blocks[{}].velocity", i), "the kinetic energy of the blocks",
+                   energy);
+    }
+    if (s.effects.gravity) {
+        double g2 = 0;
+        for (int a = 0; a < dim; ++a)
+            g2 += s.effects.gravity->acceleration[a] * s.effects.gravity->acceleration[a];
+        if (!within(g2, true) || !within(g2 * derived.dt * derived.dt, true))
+            refuse("effects.gravity", "the square of the gravity's acceleration", g2);
+    }
+    if (!within(derived.max_speed * derived.max_speed, true))
+        refuse(s.watchdog.max_speed ? "watchdog.max_speed" : "material.bulk_modulus",
+               "the square of the largest speed the watchdog allows", derived.max_speed);
 }
 
 // Reads every key (the tables in io/keys/, sph/solvers/ and sph/effects/, in

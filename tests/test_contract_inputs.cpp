@@ -7,10 +7,12 @@
 #include "io/obj_mesh.hpp"
 #include "io/png_io.hpp"
 #include "io/scene.hpp"
+#include "render/gl_context.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
 #include "support/text.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <filesystem>
@@ -283,4 +285,62 @@ TEST_CASE("inputs: command-line values that cannot be meant are refused with exi
     refused({"--set", "fluid.blocks.1.velocity=[1,0]"},
             {"fluid.blocks.1.velocity (from --set)", "'fluid.blocks' has 1 element",
              "--set fluid.blocks.1={...}"});
+}
+
+TEST_CASE("inputs: control characters in a value are shown escaped, the whole message kept",
+          "[contract][inputs]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", R"({
+        "domain": {"min": [0, 0], "max": [0.1, 0.1]},
+        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
+        "duration": 0.05, "fps": 40
+    })");
+    for (const std::string& name : {std::string(R"("ab\u0000cd")"), std::string(R"("ab\u001b[31mcd")")}) {
+        INFO(name);
+        const auto result = run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--no-png",
+                                              "--no-mp4", "--set", "output.name=" + name});
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        // The NUL used to end the message after "ab"; the escape reached the
+        // terminal raw.
+        CHECK(contains(result.output, name.substr(1, name.size() - 2)));
+        CHECK(contains(result.output, "holds a control character"));
+        CHECK(result.output.find('\0') == std::string::npos);
+        CHECK(result.output.find('\x1b') == std::string::npos);
+    }
+    CHECK(sph::printable(std::string("a\0b\x7f\n\tc", 7)) == "a\\u0000b\\u007f\n\tc");
+}
+
+TEST_CASE("inputs: a render.size the OpenGL context cannot draw is refused before anything is "
+          "written",
+          "[contract][inputs]") {
+    {
+        // One context per process at a time: this one is gone before sphclip runs.
+        const auto context = sph::make_gl_context("osmesa");
+        const sph::GlInfo& gl = context->info();
+        REQUIRE(gl.max_renderbuffer_size > 0);
+        CHECK(sph::frame_size_problem(*context, 64, 64, 4).empty());
+        const std::string wide =
+            sph::frame_size_problem(*context, gl.max_renderbuffer_size + 1, 64, 4);
+        CHECK(contains(wide, fmt::format("at most {}", std::min(gl.max_renderbuffer_size,
+                                                                gl.max_viewport_width))));
+        CHECK_FALSE(sph::frame_size_problem(*context, 64, 64, gl.max_samples + 1).empty());
+    }
+    // On llvmpipe (OSMesa is always llvmpipe) a 16384^2 frame with 4 samples
+    // is within the limits but cannot be completed: it used to fail at the
+    // first frame with exit 1, after run.json and stats.csv were written.
+    TempFolder tmp;
+    write_text(tmp / "scene.json", R"({
+        "domain": {"min": [0, 0], "max": [0.1, 0.1]},
+        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
+        "render": {"size": [16384, 16384]},
+        "duration": 0.05, "fps": 40
+    })");
+    const auto result = run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--backend",
+                                          "osmesa", "--out", (tmp / "out").string()});
+    INFO(result.output);
+    CHECK(result.exit_code == 2);
+    CHECK(contains(result.output, "render.size: the OpenGL renderer (osmesa"));
+    CHECK(contains(result.output, "16384x16384"));
+    CHECK_FALSE(fs::exists(tmp / "out"));
 }

@@ -31,6 +31,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using sph::test::read_text;
 using sph::test::run_sphclip;
+using sph::test::shell_quote;
 using sph::test::TempFolder;
 using sph::test::write_text;
 
@@ -201,6 +202,45 @@ TEST_CASE("output folder: entries of the wrong type and a user's files are refus
     for (const char* name : {"run.json.partial", "stats.csv", "clip.mp4.partial"})
         CHECK_FALSE(fs::exists(out / name));
     CHECK_FALSE(fs::is_regular_file(out / "run.json"));
+}
+
+TEST_CASE("output folder: a frames/ the run cannot write to is refused before anything is "
+          "written",
+          "[contract][output_folder]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", small_scene);
+    const fs::path out = tmp / "out";
+    fs::create_directories(out / "frames");
+    // Root writes through any permission bits: as root the run is made as
+    // nobody, from a copy of the program that nobody can reach.
+    std::string program = SPHCLIP_EXE;
+    std::string as_user;
+    if (::geteuid() == 0) {
+        program = (tmp / "sphclip").string();
+        fs::copy_file(SPHCLIP_EXE, program);
+        fs::permissions(tmp.path(), fs::perms::all);
+        fs::permissions(out, fs::perms::all);
+        fs::permissions(tmp / "scene.json", fs::perms::owner_all | fs::perms::others_read);
+        as_user = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+    }
+    fs::permissions(out / "frames", fs::perms::owner_read | fs::perms::owner_exec |
+                                        fs::perms::group_read | fs::perms::group_exec |
+                                        fs::perms::others_read | fs::perms::others_exec);
+    const std::string command = fmt::format(
+        "cd {} && {}{} run {} --out {} --threads 1 > {} 2>&1", shell_quote(tmp.path().string()),
+        as_user, shell_quote(program), shell_quote((tmp / "scene.json").string()),
+        shell_quote(out.string()), shell_quote((tmp / "log").string()));
+    const int status = std::system(command.c_str());
+    const std::string log = read_text(tmp / "log");
+    INFO(log);
+    // It used to write run.json, stats.csv and clip.mp4, then exit 1 at the
+    // first PNG.
+    CHECK((WIFEXITED(status) ? WEXITSTATUS(status) : -1) == 2);
+    CHECK(contains(log, "frames/ is not writable"));
+    for (const char* name : {"run.json", "run.json.partial", "stats.csv", "clip.mp4",
+                             "clip.mp4.partial"})
+        CHECK_FALSE(fs::exists(out / name));
+    fs::permissions(out / "frames", fs::perms::owner_all);
 }
 
 TEST_CASE("output folder: a re-run removes every output of the earlier run, and says so",

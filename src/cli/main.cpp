@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
         sph::say(stderr, "sphclip: error: {}\n", e.what());
         return sph::exit_bad_input;
     } catch (const std::exception& e) {
-        sph::say(stderr, "sphclip: error: {}\n", e.what());
+        sph::say(stderr, "sphclip: error: {}\n", sph::printable(e.what()));
         return sph::exit_failure;
     }
 }

@@ -145,6 +145,11 @@ bool check_output_names(const fs::path& folder) {
             earlier_outputs = true;
             continue;
         }
+        // Found now, not at the first frame after the run has begun.
+        if (::access(path.c_str(), W_OK | X_OK) != 0)
+            refuse(folder, fmt::format("{}/ is not writable ({}): make it writable, remove it or "
+                                       "give another --out",
+                                       name, std::strerror(errno)));
         for (const auto& entry : fs::directory_iterator(path, ec)) {
             struct stat inner {};
             if (!is_frame_file(entry.path().filename().string()) || !look(entry.path(), inner))

@@ -11,6 +11,7 @@
 #include "io/files.hpp"
 #include "io/input_error.hpp"
 #include "render/gl_context.hpp"
+#include "render/render_settings.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -220,6 +221,14 @@ int run_command(const RunOptions& given) {
     if (options.png || options.mp4)
         gl_context =
             make_gl_context(options.backend.empty() ? scene.render.backend : options.backend);
+    if (gl_context) {
+        // A frame the context cannot draw is known now, before any output.
+        const RenderSettings settings = make_render_settings(scene);
+        const std::string problem =
+            frame_size_problem(*gl_context, settings.width, settings.height, settings.samples);
+        if (!problem.empty())
+            throw InputError(scene.file, "render.size", problem);
+    }
     // A stop asked for while the run was being set up: nothing is written.
     if (const int signal = StopSignals::received()) {
         say(stderr,

@@ -15,6 +15,9 @@ namespace sph {
 struct GlInfo {
     std::string backend; // "egl" or "osmesa"
     std::string vendor, renderer, version;
+    // What bounds a frame: its width and height, and its multisampling.
+    int max_renderbuffer_size = 0, max_viewport_width = 0, max_viewport_height = 0,
+        max_samples = 0;
 };
 
 // No context could be made; the message lists every attempt.
@@ -35,6 +38,12 @@ class GlContext {
   private:
     GlInfo info_;
 };
+
+// Why the context cannot draw a width x height frame with `samples`
+// samples (its limits, or a framebuffer it cannot complete, e.g. for want of
+// memory); empty when it can. Allocates the frame's buffers once and frees
+// them, so that a run learns it before it writes anything.
+std::string frame_size_problem(const GlContext& context, int width, int height, int samples);
 
 // "egl", "osmesa", or "auto" (EGL first, then OSMesa).
 std::unique_ptr<GlContext> make_gl_context(std::string_view backend);

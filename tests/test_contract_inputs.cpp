@@ -295,7 +295,8 @@ TEST_CASE("inputs: control characters in a value are shown escaped, the whole me
         "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
         "duration": 0.05, "fps": 40
     })");
-    for (const std::string& name : {std::string(R"("ab\u0000cd")"), std::string(R"("ab\u001b[31mcd")")}) {
+    for (const std::string& name :
+         {std::string(R"("ab\u0000cd")"), std::string(R"("ab\u001b[31mcd")")}) {
         INFO(name);
         const auto result = run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--no-png",
                                               "--no-mp4", "--set", "output.name=" + name});

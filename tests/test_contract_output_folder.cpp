@@ -237,8 +237,8 @@ TEST_CASE("output folder: a frames/ the run cannot write to is refused before an
     // first PNG.
     CHECK((WIFEXITED(status) ? WEXITSTATUS(status) : -1) == 2);
     CHECK(contains(log, "frames/ is not writable"));
-    for (const char* name : {"run.json", "run.json.partial", "stats.csv", "clip.mp4",
-                             "clip.mp4.partial"})
+    for (const char* name :
+         {"run.json", "run.json.partial", "stats.csv", "clip.mp4", "clip.mp4.partial"})
         CHECK_FALSE(fs::exists(out / name));
     fs::permissions(out / "frames", fs::perms::owner_all);
 }

@@ -41,7 +41,8 @@ void GlContext::load_functions(void* (*get_proc)(const char*), std::string backe
 
 std::string frame_size_problem(const GlContext& context, int width, int height, int samples) {
     const GlInfo& gl = context.info();
-    const std::string renderer = fmt::format("the OpenGL renderer ({}, {})", gl.backend, gl.renderer);
+    const std::string renderer =
+        fmt::format("the OpenGL renderer ({}, {})", gl.backend, gl.renderer);
     const int most_width = std::min(gl.max_renderbuffer_size, gl.max_viewport_width);
     const int most_height = std::min(gl.max_renderbuffer_size, gl.max_viewport_height);
     if (width > most_width || height > most_height)

@@ -16,8 +16,7 @@ struct GlInfo {
     std::string backend; // "egl" or "osmesa"
     std::string vendor, renderer, version;
     // What bounds a frame: its width and height, and its multisampling.
-    int max_renderbuffer_size = 0, max_viewport_width = 0, max_viewport_height = 0,
-        max_samples = 0;
+    int max_renderbuffer_size = 0, max_viewport_width = 0, max_viewport_height = 0, max_samples = 0;
 };
 
 // No context could be made; the message lists every attempt.

@@ -70,7 +70,10 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
     for (std::size_t i = 0; i < n; ++i)
         pressure_term[i] = state.pressure[i] / (state.density[i] * state.density[i]);
     // Compiled for each set of viscosities (PairViscosities::dispatch).
-    const auto accelerate = [&](auto artificial_flag, auto laminar_flag) {
+    // params and kernel by init-capture: clang 14 rejects the inner lambdas'
+    // uses of the function's own parameters inside the OpenMP loop.
+    const auto accelerate = [&, &params = params, &kernel = kernel](auto artificial_flag,
+                                                                    auto laminar_flag) {
         constexpr bool artificial = decltype(artificial_flag)::value;
         constexpr bool laminar = decltype(laminar_flag)::value;
         const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};

@@ -2,12 +2,14 @@
 // files, each kind within its size limit, says which file and which limit
 // when it refuses one, and never writes over a file it reads.
 
+#include "analysis/csv_table.hpp"
 #include "io/files.hpp"
 #include "io/input_error.hpp"
 #include "io/obj_mesh.hpp"
 #include "io/png_io.hpp"
 #include "io/scene.hpp"
 #include "render/gl_context.hpp"
+#include "render/text.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
 #include "support/text.hpp"
@@ -17,6 +19,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <sys/stat.h>
@@ -344,4 +347,60 @@ TEST_CASE("inputs: a render.size the OpenGL context cannot draw is refused befor
     CHECK(contains(result.output, "render.size: the OpenGL renderer (osmesa"));
     CHECK(contains(result.output, "16384x16384"));
     CHECK_FALSE(fs::exists(tmp / "out"));
+}
+
+TEST_CASE("inputs: a render.font that is a pipe, a device or not a font is refused before "
+          "anything is written",
+          "[contract][inputs]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", R"({
+        "domain": {"min": [0, 0], "max": [0.1, 0.1]},
+        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
+        "render": {"size": [64, 64]},
+        "duration": 0.05, "fps": 40
+    })");
+    REQUIRE(::mkfifo((tmp / "font.fifo").c_str(), 0644) == 0);
+    write_text(tmp / "notes.ttf", "not a font");
+    // The FIFO used to block the run for ever (open() restarts after
+    // SIGTERM); /dev/zero and a text file fell back to the default with a
+    // warning, though the user named a font.
+    for (const auto& [font, why] : std::vector<std::pair<std::string, std::string>>{
+             {(tmp / "font.fifo").string(), "not a regular file"},
+             {"/dev/zero", "not a regular file"},
+             {(tmp / "notes.ttf").string(), "is not a font FreeType can read"}}) {
+        INFO(font);
+        const auto result =
+            run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--out", (tmp / "out").string(),
+                              "--set", "render.font=\"" + font + "\""});
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "render.font"));
+        CHECK(contains(result.output, why));
+        CHECK_FALSE(fs::exists(tmp / "out"));
+    }
+    CHECK(sph::font_problem(sph::default_font_paths()[0]).empty());
+}
+
+TEST_CASE("inputs: a plan's files, a --list file and the tables read back are bounded too",
+          "[contract][inputs]") {
+    TempFolder tmp;
+    // A plan.json past its limit: a sparse file, no disk used.
+    fs::create_directories(tmp / "plan");
+    { std::ofstream(tmp / "plan" / "plan.json").put('{'); }
+    fs::resize_file(tmp / "plan" / "plan.json", sph::plan_file_limit.bytes + 1);
+    auto result = run_sphclip(tmp, {"collect", (tmp / "plan").string()});
+    INFO(result.output);
+    CHECK(result.exit_code == 2);
+    CHECK(contains(result.output, "plan.json"));
+    CHECK(contains(result.output, "a plan file is at most 64 MiB"));
+    // batch --list /dev/zero used to be read until memory ran out.
+    result = run_sphclip(tmp, {"batch", "--list", "/dev/zero", "--out", (tmp / "b").string()});
+    INFO(result.output);
+    CHECK(result.exit_code == 2);
+    CHECK(contains(result.output, "--list"));
+    CHECK(contains(result.output, "not a regular file"));
+    // A FIFO where a table is read back: refused at once, not waited on.
+    REQUIRE(::mkfifo((tmp / "stats.csv").c_str(), 0644) == 0);
+    CHECK_THROWS_WITH(sph::read_csv_table(tmp / "stats.csv"),
+                      Catch::Contains("not a regular file"));
 }

@@ -74,3 +74,51 @@ TEST_CASE("the overlay's text comes from a real font, or from the bitmap font wi
     CHECK_FALSE(unreadable.from_font());
     CHECK(warning.find(bad) != std::string::npos);
 }
+
+TEST_CASE("text is UTF-8: accents, Greek and symbols are drawn, any other character of the "
+          "text too, and malformed bytes show as '?'",
+          "[render]") {
+    // Decoding: one to four bytes, and what is malformed.
+    const auto characters = [](std::string_view text) {
+        std::u32string out;
+        for (std::size_t at = 0; at < text.size();)
+            out += next_character(text, at);
+        return out;
+    };
+    CHECK(characters("a\xc3\xa9\xcf\x81\xe2\x88\x92\xf0\x9f\x98\x80") ==
+          U"a\u00e9\u03c1\u2212\U0001f600");
+    CHECK(characters("\xc3") == U"\ufffd");                     // cut short
+    CHECK(characters("\xc0\xaf") == U"\ufffd\ufffd");           // overlong '/'
+    CHECK(characters("\xed\xa0\x80") == U"\ufffd\ufffd\ufffd"); // a surrogate
+    CHECK(characters("\xff"
+                     "a") == U"\ufffda");
+
+    const auto context = make_gl_context("auto");
+    std::string warning;
+    const std::string font = find_font("", warning);
+    // A character outside the fixed set, named in the texts: in the atlas.
+    const TextFace face(font, 20, warning, {"\xe2\x88\x91"}); // U+2211 N-ARY SUMMATION
+    REQUIRE(face.from_font());
+    // Each character its own glyph: the quads' texture coordinates differ
+    // from the '?' that stands in for a missing one.
+    const auto first_quad = [&](std::string_view text) {
+        std::vector<TextVertex> quads;
+        face.append(text, 0, 20, quads);
+        REQUIRE(quads.size() == 6);
+        return std::pair{quads[0].u, quads[0].v};
+    };
+    const auto question = first_quad("?");
+    for (const char* text : {"\xc3\xa9", "\xcf\x81", "\xc2\xb3", "\xe2\x88\x92", "\xe2\x88\x91"}) {
+        INFO(text);
+        CHECK(first_quad(text) != question);
+    }
+    // U+4E2D is in no fixed set and was not named: '?'; so is a malformed byte.
+    CHECK(first_quad("\xe4\xb8\xad") == question);
+    CHECK(first_quad("\xff") == question);
+    // It used to skip every byte past '~': "é" drew nothing.
+    std::vector<TextVertex> quads;
+    face.append("d\xc3\xa9"
+                "bit",
+                0, 20, quads);
+    CHECK(quads.size() == 5 * 6);
+}

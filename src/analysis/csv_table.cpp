@@ -1,11 +1,10 @@
 #include "analysis/csv_table.hpp"
 
+#include "io/files.hpp"
+
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -81,12 +80,8 @@ CsvTable parse_csv_table(std::string_view text, std::string source) {
 }
 
 CsvTable read_csv_table(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw std::runtime_error("cannot read " + path.string() + ": " + std::strerror(errno));
-    std::stringstream text;
-    text << in.rdbuf();
-    return parse_csv_table(text.str(), path.string());
+    // FileReadError is a runtime_error that names the file.
+    return parse_csv_table(read_input_file(path, table_file_limit), path.string());
 }
 
 } // namespace sph

@@ -1,10 +1,10 @@
 #include "analysis/run_outputs.hpp"
 
 #include "analysis/csv_table.hpp"
+#include "io/files.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <stdexcept>
 
@@ -66,9 +66,8 @@ double number_at(const json& scene, const json::json_pointer& pointer) {
 RunOutputs read_run_outputs(const fs::path& run) {
     RunOutputs out{"missing", 0, 0, nan, nan, nan, nan, json::object()};
     try {
-        std::ifstream in(run / "run.json");
-        if (in) {
-            const json doc = json::parse(in);
+        if (fs::exists(run / "run.json")) {
+            const json doc = json::parse(read_input_file(run / "run.json", run_record_limit));
             out.status = doc.value("status", "missing");
             out.steps = doc.value("steps", std::uint64_t(0));
             out.particles = doc.value("particles", std::size_t(0));

@@ -53,8 +53,7 @@ std::string holder_of(int fd) {
 // True when folder/run.json is a run.json that sphclip wrote.
 bool written_by_sphclip(const fs::path& run_json) {
     try {
-        const auto document =
-            nlohmann::json::parse(read_input_file(run_json, {"run.json", 64u << 20}));
+        const auto document = nlohmann::json::parse(read_input_file(run_json, run_record_limit));
         return document.is_object() && document.contains("sphclip_version");
     } catch (const std::exception&) {
         return false;

@@ -13,7 +13,6 @@
 #include <cctype>
 #include <cmath>
 #include <fmt/format.h>
-#include <fstream>
 #include <sstream>
 
 namespace sph {
@@ -25,9 +24,13 @@ namespace {
 // The scenes of --list: a line each, blank lines and # comments skipped,
 // relative paths from the current folder as on the command line.
 std::vector<std::string> read_list(const fs::path& list) {
-    std::ifstream in(list);
-    if (!fs::is_regular_file(list) || !in)
-        throw InputError("command line", "--list", fmt::format("cannot read {}", list.string()));
+    std::istringstream in;
+    try {
+        in.str(read_input_file(list, list_file_limit));
+    } catch (const FileReadError& e) {
+        throw InputError("command line", "--list",
+                         fmt::format("cannot read {}: {}", list.string(), e.reason));
+    }
     std::vector<std::string> scenes;
     std::string line;
     std::size_t number = 0;
@@ -49,7 +52,12 @@ std::vector<std::string> read_list(const fs::path& list) {
 // The state hash of the last frame in stats.csv, as written (a 64-bit
 // number: read as text, a double would round it).
 std::string last_state_hash(const fs::path& run) {
-    std::ifstream in(run / "stats.csv");
+    std::istringstream in;
+    try {
+        in.str(read_input_file(run / "stats.csv", table_file_limit));
+    } catch (const FileReadError&) {
+        return {};
+    }
     std::string line, header, last;
     while (std::getline(in, line)) {
         if (line.empty() || line[0] == '#')

@@ -7,7 +7,6 @@
 
 #include <cstdlib>
 #include <fmt/format.h>
-#include <fstream>
 #include <sstream>
 #include <unistd.h>
 
@@ -36,11 +35,14 @@ std::vector<std::string> command_line(const Plan& plan, const ChildRunRequest& r
     return argv;
 }
 
-std::string read_small_file(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
+// A plan's file, within its limit (io/files.hpp): a plan folder is the
+// user's, and a file there may be anything.
+std::string read_plan_file(const fs::path& file) {
+    try {
+        return read_input_file(file, plan_file_limit);
+    } catch (const FileReadError& e) {
+        throw InputError(file.string(), "", e.reason);
+    }
 }
 
 // The scene with its --set applied, as `run` would resolve it.
@@ -108,7 +110,7 @@ Plan read_plan(const fs::path& folder) {
         throw InputError(label, "", "no plan here (study, validate and batch write one)");
     json manifest;
     try {
-        manifest = json::parse(read_small_file(file));
+        manifest = json::parse(read_plan_file(file));
     } catch (const json::exception& e) {
         throw InputError(label, "", fmt::format("not JSON: {}", e.what()));
     }
@@ -173,7 +175,7 @@ ChildRunResult read_run_record(const Plan& plan, std::size_t index) {
     if (!fs::is_regular_file(file))
         return result;
     try {
-        const json record = json::parse(read_small_file(file));
+        const json record = json::parse(read_plan_file(file));
         result.exit_code = record.at("exit_code").get<int>();
         result.measured_wall_s = record.at("measured_wall_s").get<double>();
         result.started = true;

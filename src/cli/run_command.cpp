@@ -10,6 +10,7 @@
 #include "cli/stop_signals.hpp"
 #include "io/files.hpp"
 #include "io/input_error.hpp"
+#include "render/fonts.hpp"
 #include "render/gl_context.hpp"
 #include "render/render_settings.hpp"
 
@@ -41,7 +42,7 @@ void make_fast_preview(Scene& scene) {
 std::optional<nlohmann::json> read_run_json(const fs::path& file) {
     std::string text;
     try {
-        text = read_input_file(file, {"run.json", std::uint64_t(64) << 20});
+        text = read_input_file(file, run_record_limit);
     } catch (const FileReadError&) {
         return std::nullopt;
     }
@@ -228,6 +229,10 @@ int run_command(const RunOptions& given) {
             frame_size_problem(*gl_context, settings.width, settings.height, settings.samples);
         if (!problem.empty())
             throw InputError(scene.file, "render.size", problem);
+        // A font the user named and FreeType cannot use (a FIFO would block).
+        if (!settings.font.empty())
+            if (const std::string font = font_problem(settings.font); !font.empty())
+                throw InputError(scene.file, "render.font", font);
     }
     // A stop asked for while the run was being set up: nothing is written.
     if (const int signal = StopSignals::received()) {

@@ -216,7 +216,7 @@ int submit_to_slurm(const Plan& plan, const SlurmOptions& options,
     json submissions = json::array();
     const fs::path record = slurm / "submissions.json";
     if (fs::is_regular_file(record))
-        submissions = json::parse(read_text(record), nullptr, false);
+        submissions = json::parse(read_input_file(record, plan_file_limit), nullptr, false);
     if (!submissions.is_array())
         submissions = json::array();
     submissions.push_back(

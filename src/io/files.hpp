@@ -52,6 +52,17 @@ struct InputLimit {
 inline constexpr InputLimit scene_file_limit{"scene file", std::uint64_t(16) << 20};
 inline constexpr InputLimit mesh_file_limit{"mesh file", std::uint64_t(512) << 20};
 inline constexpr InputLimit png_file_limit{"PNG image", std::uint64_t(256) << 20};
+// A run's record, read back by a re-run (`sphclip run out/x/run.json`), by
+// the next run into its folder and by collect.
+inline constexpr InputLimit run_record_limit{"run.json", std::uint64_t(64) << 20};
+// A plan's files (plan.json, plan/NN/*.json, slurm/submissions.json) and a
+// `batch --list` file.
+inline constexpr InputLimit plan_file_limit{"plan file", std::uint64_t(64) << 20};
+inline constexpr InputLimit list_file_limit{"list file", std::uint64_t(16) << 20};
+// The CSV tables study, validate and collect read back (stats.csv, fronts).
+inline constexpr InputLimit table_file_limit{"CSV table", std::uint64_t(1) << 30};
+// render.font: the largest fonts (CJK collections) are about 30 MiB.
+inline constexpr InputLimit font_file_limit{"font file", std::uint64_t(64) << 20};
 
 // An input that cannot be read: `reason` says why, without the path (the
 // caller names the file and the field).

@@ -114,8 +114,10 @@ Overlay::Overlay(const RenderSettings& s)
       ticks_(round_ticks(s.range[0], s.range[1])) {
     const std::string font = find_font(s.font, font_warning_);
     std::string face_warning;
-    body_ = std::make_unique<TextFace>(font, int(body_px_), face_warning);
-    title_face_ = std::make_unique<TextFace>(font, int(title_px_), face_warning);
+    body_ = std::make_unique<TextFace>(font, int(body_px_), face_warning,
+                                       std::vector<std::string>{label_, caption_});
+    title_face_ = std::make_unique<TextFace>(font, int(title_px_), face_warning,
+                                             std::vector<std::string>{title_});
     if (!face_warning.empty())
         font_warning_ = face_warning;
     // Above the scene: one line for the title and the caption, and a gap.

@@ -1,14 +1,17 @@
 #pragma once
 // Text for the overlay: a real font rasterised by FreeType once, at one
 // pixel size, into an atlas texture of anti-aliased glyphs (printable
-// ASCII), drawn as one textured quad per glyph on whole pixels so the
+// ASCII, Latin-1, Greek, a few symbols, and every other character of the
+// texts it is made for; text is UTF-8), drawn as one textured quad per glyph on whole pixels so the
 // coverage FreeType computed reaches the image unchanged. Without a font
 // file the stb_easy_font bitmap glyphs stand in (solid quads), with a
 // warning: a run never fails for want of a font.
 
+#include "render/fonts.hpp"
 #include "render/gl_resources.hpp"
 
 #include <array>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
@@ -23,19 +26,19 @@ struct TextVertex {
     float x, y, u, v;
 };
 
-// The font file to use: `requested` (render.font) when it names a readable
-// file; else the first readable of default_font_paths(); else what
-// fontconfig's `fc-match` names for "DejaVu Sans"; else empty (the bitmap
-// font). Why a choice was not taken goes to `warning` (empty: none).
-std::string find_font(const std::string& requested, std::string& warning);
-// Where Debian (fonts-dejavu-core), Fedora and Arch put DejaVu Sans.
-const std::vector<std::string>& default_font_paths();
+// The next character of UTF-8 `text` at byte `at`, moving `at` past it; a
+// malformed sequence is one U+FFFD for its first byte.
+char32_t next_character(std::string_view text, std::size_t& at);
 
 class TextFace {
   public:
     // `pixel_size`: the em height in px. `font_file` empty or unreadable by
-    // FreeType: the bitmap font at about that size (and `warning` says why).
-    TextFace(const std::string& font_file, int pixel_size, std::string& warning);
+    // FreeType: the bitmap font at about that size (and `warning` says why);
+    // it has ASCII only, and other characters show as '?'. `texts`: the
+    // UTF-8 texts to be drawn, whose characters the atlas must hold beyond
+    // its fixed set.
+    TextFace(const std::string& font_file, int pixel_size, std::string& warning,
+             const std::vector<std::string>& texts = {});
     ~TextFace();
     TextFace(const TextFace&) = delete;
     TextFace& operator=(const TextFace&) = delete;
@@ -59,14 +62,26 @@ class TextFace {
         float advance = 0;                            // px
         float u0 = 0, v0 = 0, u1 = 0, v1 = 0;         // in the atlas
     };
-    void load_font(const std::string& file, int pixel_size, std::string& warning);
+    // A glyph's metrics and coverage (rows top-down, width x height bytes).
+    struct GlyphImage {
+        Glyph glyph;
+        std::vector<std::uint8_t> coverage;
+    };
+    bool load_font(const std::string& file, int pixel_size, std::string& warning,
+                   const std::vector<char32_t>& characters);
     void make_bitmap_font(int pixel_size);
+    // Packs the glyphs into the atlas texture; characters_[k] has glyphs_[k].
+    void build_atlas(std::vector<char32_t> characters, std::vector<GlyphImage> images);
+    // The glyph for `c`; '?' for one the atlas lacks.
+    const Glyph& glyph(char32_t c) const;
 
+    std::string font_bytes_;  // the font file, read once: FreeType reads the face from here
     void* library_ = nullptr; // FT_Library
     void* face_ = nullptr;    // FT_Face: kept for kerning
     bool kerning_ = false;
-    std::array<Glyph, 95> glyphs_{}; // ' ' .. '~'
-    float bitmap_scale_ = 1;         // bitmap font: px per glyph pixel
+    std::vector<char32_t> characters_; // sorted
+    std::vector<Glyph> glyphs_;        // of characters_
+    float bitmap_scale_ = 1;           // bitmap font: px per glyph pixel
     float cap_height_ = 0, ascent_ = 0, descent_ = 0;
     gl::Texture atlas_;
 };

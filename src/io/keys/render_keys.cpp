@@ -60,8 +60,8 @@ const KeyTable<Scene::Render>& render_keys() {
          .absent = "t = {time} s    frame {frame}"},
         {.path = "font",
          .field = &S::font,
-         .doc = "Font file (TrueType/OpenType) for the overlay's text; a file that cannot be "
-                "read warns and the default is used.",
+         .doc = "Font file (TrueType/OpenType) for the overlay's text; a file that is not a "
+                "regular file of at most 64 MiB that FreeType reads is refused.",
          .absent = "DejaVu Sans (fonts-dejavu-core), else fc-match's, else a bitmap font"},
         {.path = "backend",
          .field = &S::backend,

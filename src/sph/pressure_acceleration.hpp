@@ -69,6 +69,7 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
         pressure_term[i] = state.pressure[i] / (state.density[i] * state.density[i]);
+    const bool hydrostatic_walls = params.wall_gravity != Vec<D>(0);
     // Compiled for each set of viscosities (PairViscosities::dispatch).
     const auto accelerate = [&](auto artificial_flag, auto laminar_flag) {
         constexpr bool artificial = decltype(artificial_flag)::value;
@@ -105,6 +106,10 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
                     const Real r = std::sqrt(r2);
                     const Vec<D> v_ib = state.velocity[i] - wall_velocity[b];
                     Real factor = 2 * pi_over_rho2;
+                    // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise.
+                    if (hydrostatic_walls)
+                        factor += std::max(-glm::dot(params.wall_gravity, x_ib), Real(0)) /
+                                  state.density[i];
                     if constexpr (artificial)
                         factor += Pi(glm::dot(v_ib, x_ib), 2 * state.density[i], r2);
                     Vec<D> term = -(params.rest_density * volume[b] * factor) *

@@ -70,10 +70,13 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
     for (std::size_t i = 0; i < n; ++i)
         pressure_term[i] = state.pressure[i] / (state.density[i] * state.density[i]);
     const bool hydrostatic_walls = params.wall_gravity != Vec<D>(0);
-    // Compiled for each set of viscosities (PairViscosities::dispatch).
-    const auto accelerate = [&](auto artificial_flag, auto laminar_flag) {
+    // Compiled for each set of viscosities (PairViscosities::dispatch) and
+    // wall pressure: a test in the wall loop keeps it from vectorising, which
+    // also changes its sum's order (and so every bit of a 3D run).
+    const auto accelerate = [&](auto artificial_flag, auto laminar_flag, auto hydrostatic_flag) {
         constexpr bool artificial = decltype(artificial_flag)::value;
         constexpr bool laminar = decltype(laminar_flag)::value;
+        constexpr bool hydrostatic = decltype(hydrostatic_flag)::value;
         const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
         const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
 #pragma omp parallel for schedule(dynamic, 256)
@@ -107,7 +110,7 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
                     const Vec<D> v_ib = state.velocity[i] - wall_velocity[b];
                     Real factor = 2 * pi_over_rho2;
                     // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise.
-                    if (hydrostatic_walls)
+                    if constexpr (hydrostatic)
                         factor += std::max(-glm::dot(params.wall_gravity, x_ib), Real(0)) /
                                   state.density[i];
                     if constexpr (artificial)
@@ -122,7 +125,12 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
             state.acceleration[i] = a;
         }
     };
-    viscosities.dispatch(accelerate);
+    viscosities.dispatch([&](auto artificial, auto laminar) {
+        if (hydrostatic_walls)
+            accelerate(artificial, laminar, std::true_type{});
+        else
+            accelerate(artificial, laminar, std::false_type{});
+    });
 }
 
 } // namespace sph

@@ -11,6 +11,7 @@
 #include "sph/effects/surface_tension.hpp"
 #include "sph/effects/viscosity_keys.hpp"
 #include "sph/effects/xsph.hpp"
+#include "sph/hydrostatic_start.hpp"
 #include "sph/params.hpp"
 #include "sph/scene_key.hpp"
 #include "sph/solvers/solver_keys.hpp"
@@ -75,6 +76,7 @@ struct Scene {
         std::optional<double> smoothing_ratio;  // h / spacing; default 2.5 (2D), 2.2 (3D)
         std::optional<double> smoothing_length; // m, overrides the ratio
         std::optional<double> mass;             // kg; default: rest density on the lattice
+        FluidStart start = FluidStart::rest;    // rest | hydrostatic (sph/hydrostatic_start.hpp)
     } fluid;
 
     struct Material {

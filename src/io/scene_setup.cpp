@@ -71,15 +71,39 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                   !scene.watchdog.max_speed.has_value()};
     p.reorder_every = scene.solver.reorder_every;
     p.precision = derived.precision;
+    if (scene.solver.wall_pressure == WallPressure::hydrostatic && scene.effects.gravity &&
+        derived.walls == WallModel::particles)
+        p.wall_gravity = to_vec<D>(scene.effects.gravity->acceleration);
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     p.obstacles = make_obstacles<D>(scene);
     p.paddles = make_paddles<D>(scene);
     return p;
 }
 
+// The law by which a hydrostatic start compresses the lattice: the solver's
+// equation of state (sph/hydrostatic_start.hpp); none where the fluid is
+// incompressible or nothing weighs.
+StartLaw start_law(const Scene& scene) {
+    if (scene.fluid.start != FluidStart::hydrostatic || !scene.effects.gravity)
+        return StartLaw::none;
+    switch (scene.solver.name) {
+    case SolverKind::seed:
+        return StartLaw::linear;
+    case SolverKind::wcsph:
+        return StartLaw::tait;
+    default:
+        return StartLaw::none;
+    }
+}
+
 template <int D>
 State<D> make_initial_state(const Scene& scene, const Derived& derived) {
     const Real s = scene.fluid.spacing;
+    const StartLaw law = start_law(scene);
+    const Vec<D> gravity =
+        scene.effects.gravity ? to_vec<D>(scene.effects.gravity->acceleration) : Vec<D>(0);
+    const Real g = glm::length(gravity);
+    const Vec<D> up = g > 0 ? -gravity / g : Vec<D>(0);
     // Sites inside an obstacle or a paddle (at rest), or too near one, are
     // left empty: a block may be placed across them.
     std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene);
@@ -95,6 +119,15 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
             count[a] = lattice_count(block.min[a], block.max[a], s);
             total *= count[a];
         }
+        // The block's filled box (half a spacing beyond its outer sites), its
+        // highest and lowest points along `up`: a hydrostatic start's surface
+        // and fixed base.
+        Real top = 0, bottom = 0;
+        for (int a = 0; a < D; ++a) {
+            const Real lo = block.min[a], hi = block.min[a] + Real(count[a]) * s;
+            top += std::max(up[a] * lo, up[a] * hi);
+            bottom += std::min(up[a] * lo, up[a] * hi);
+        }
         for (std::size_t k = 0; k < total; ++k) {
             std::size_t rest = k;
             Vec<D> x;
@@ -104,6 +137,9 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
             }
             if (blocked_by_obstacle<D>(obstacles, x, s))
                 continue;
+            if (law != StartLaw::none)
+                x = hydrostatic_site<D>(x, up, top, bottom, law, g, scene.material.rest_density,
+                                        scene.material.bulk_modulus);
             state.position[next] = x;
             state.velocity[next] = to_vec<D>(block.velocity);
             state.acceleration[next] = Vec<D>(0);

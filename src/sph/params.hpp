@@ -15,6 +15,14 @@ namespace sph {
 
 enum class Integrator { symplectic_euler, verlet };
 
+// The pressure a wall particle takes from the fluid particle beside it
+// (solver.wall_pressure): mirror, p_b = p_i; hydrostatic, p_b = p_i plus the
+// weight of the fluid between them, p_b = p_i + rho_i max(g . (x_b - x_i), 0)
+// (Adami et al. 2012, eq. 27's hydrostatic term, pair by pair; only walls
+// below the particle add: a wall above takes the mirrored pressure, which
+// never pulls the fluid onto it).
+enum class WallPressure { mirror, hydrostatic };
+
 // The solvers (solver.name), in the order of solver_names().
 enum class SolverKind { seed, wcsph, dfsph };
 
@@ -79,6 +87,9 @@ struct Params {
     // Morton curve), which keep neighbours near in memory; 0: never.
     int reorder_every = 0;
     Precision precision = Precision::double_precision;
+    // Gravity that the walls' pressure adds across the fluid-wall distance
+    // (WallPressure::hydrostatic); zero: the mirrored pressure.
+    Vec<D> wall_gravity{0}; // m/s^2
 
     Real sound_speed() const { return std::sqrt(bulk_modulus / rest_density); }
 };

@@ -69,13 +69,17 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
         pressure_term[i] = state.pressure[i] / (state.density[i] * state.density[i]);
-    // Compiled for each set of viscosities (PairViscosities::dispatch).
+    const bool hydrostatic_walls = params.wall_gravity != Vec<D>(0);
+    // Compiled for each set of viscosities (PairViscosities::dispatch) and
+    // wall pressure: a test in the wall loop keeps it from vectorising, which
+    // also changes its sum's order (and so every bit of a 3D run).
     // params and kernel by init-capture: clang 14 rejects the inner lambdas'
     // uses of the function's own parameters inside the OpenMP loop.
-    const auto accelerate = [&, &params = params, &kernel = kernel](auto artificial_flag,
-                                                                    auto laminar_flag) {
+    const auto accelerate = [&, &params = params, &kernel = kernel](
+                                auto artificial_flag, auto laminar_flag, auto hydrostatic_flag) {
         constexpr bool artificial = decltype(artificial_flag)::value;
         constexpr bool laminar = decltype(laminar_flag)::value;
+        constexpr bool hydrostatic = decltype(hydrostatic_flag)::value;
         const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
         const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
 #pragma omp parallel for schedule(dynamic, 256)
@@ -108,6 +112,10 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
                     const Real r = std::sqrt(r2);
                     const Vec<D> v_ib = state.velocity[i] - wall_velocity[b];
                     Real factor = 2 * pi_over_rho2;
+                    // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise.
+                    if constexpr (hydrostatic)
+                        factor += std::max(-glm::dot(params.wall_gravity, x_ib), Real(0)) /
+                                  state.density[i];
                     if constexpr (artificial)
                         factor += Pi(glm::dot(v_ib, x_ib), 2 * state.density[i], r2);
                     Vec<D> term = -(params.rest_density * volume[b] * factor) *
@@ -120,7 +128,12 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
             state.acceleration[i] = a;
         }
     };
-    viscosities.dispatch(accelerate);
+    viscosities.dispatch([&](auto artificial, auto laminar) {
+        if (hydrostatic_walls)
+            accelerate(artificial, laminar, std::true_type{});
+        else
+            accelerate(artificial, laminar, std::false_type{});
+    });
 }
 
 } // namespace sph

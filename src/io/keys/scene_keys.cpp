@@ -59,6 +59,13 @@ const KeyTable<Scene::Fluid>& fluid_keys() {
                 "exactly the rest density.",
          .bound = Bound::positive,
          .absent = "rest density on the lattice"},
+        {.path = "start",
+         .field = enum_field<&S::start>(),
+         .doc = "State of the blocks at the start: rest (every particle at the rest density, zero "
+                "pressure) or hydrostatic (each block at the pressure of its own weight, as a "
+                "column held behind a gate: for seed and wcsph the lattice compressed along "
+                "gravity by the equation of state; dfsph's first solve finds that pressure).",
+         .choices = {"rest", "hydrostatic"}},
     };
     return keys;
 }

@@ -239,6 +239,29 @@ void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>&
     }
 }
 
+// The walls' pressure with its hydrostatic rise (solver.wall_pressure):
+// p_b = p_i + rho_i max(g . (x_b - x_i), 0). The mirrored part is the solves'
+// 2 s_i (correct_velocities); the rise does not depend on the solve, so it is
+// a force known before it, a_i = -sum_b rho0 V_b (p_b - p_i) / rho_i^2 grad W_ib,
+// and the density solve then removes what it still compresses.
+template <int D>
+void DfsphSolver<D>::add_wall_weight(const Params<D>& params, const StepContext<D>& context,
+                                     State<D>& state) const {
+    const std::size_t n = state.size();
+    const NeighbourList& walls = context.boundary_neighbours;
+    const auto xb = context.boundary->positions();
+    const std::span<const Vec<D>> wall_gradient = wall_gradient_;
+    const Vec<D> g = params.wall_gravity;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec<D> x_i = state.position[i];
+        const Vec<D> a = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
+            return std::max(-glm::dot(g, x_i - xb[b]), Real(0)) * wall_gradient[e];
+        });
+        state.acceleration[i] -= a / state.density[i];
+    }
+}
+
 template <int D>
 StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& state,
                                 StepContext<D>& context) {
@@ -288,6 +311,10 @@ StepReport DfsphSolver<D>::step_in_pieces(const Params<D>& params, Real dt, int 
     // 3. Non-pressure forces, the scene's effects (viscosity, gravity, ...); v* = v + dt a.
     std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
     context.apply_effects(params, state);
+    if (params.wall_gravity != Vec<D>(0) && context.boundary) {
+        auto timed = context.time(Stage::pressure_solve);
+        add_wall_weight(params, context, state);
+    }
     {
         auto timed = context.time(Stage::integration);
         kick(dt, state);

@@ -52,6 +52,9 @@ class DfsphSolver final : public Solver<D> {
     int solve(const Params<D>& params, Real dt, Target target, const StepContext<D>& context,
               State<D>& state);
     void correct_velocities(const StepContext<D>& context, State<D>& state) const;
+    // state.acceleration += the walls' hydrostatic pressure (solver.wall_pressure).
+    void add_wall_weight(const Params<D>& params, const StepContext<D>& context,
+                         State<D>& state) const;
     // One step of dt, split into halves while its density solve does not converge.
     StepReport step_in_pieces(const Params<D>& params, Real dt, int splits, State<D>& state,
                               StepContext<D>& context);

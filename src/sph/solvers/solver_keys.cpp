@@ -50,6 +50,13 @@ const KeyTable<SolverSettings>& solver_keys() {
          .doc = "Domain walls: reflect (the seed's) or particles (Akinci et al. 2012 boundary "
                 "particles); auto: reflect for seed, particles for the others.",
          .choices = {"auto", "reflect", "particles"}},
+        {.path = "wall_pressure",
+         .field = enum_field<&S::wall_pressure>(),
+         .doc = "Pressure of the boundary particles (wcsph, dfsph): mirror (the fluid particle's "
+                "own, p_b = p_i) or hydrostatic (plus the weight of the fluid between them, "
+                "p_b = p_i + rho_i g . (x_b - x_i) for a wall below, Adami et al. 2012), so that "
+                "the layers at a floor are not compressed beyond the hydrostatic pressure.",
+         .choices = {"mirror", "hydrostatic"}},
         {.path = "artificial_viscosity",
          .field = &S::artificial_viscosity,
          .doc = "Alpha of Monaghan's artificial viscosity (wcsph).",

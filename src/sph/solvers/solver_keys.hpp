@@ -35,6 +35,8 @@ struct SolverSettings {
     // The arithmetic of wcsph's density and pressure passes
     // (sph/single_precision/cell_passes.hpp); none: auto.
     std::optional<Precision> precision;
+    // mirror | hydrostatic (sph/params.hpp)
+    WallPressure wall_pressure = WallPressure::mirror;
 };
 
 // The keys of `solver`, in the order `sphclip keys` lists them.

@@ -12,6 +12,7 @@
 #include "io/stats_csv.hpp"
 #include "render/render_sink.hpp"
 #include "sph/surface.hpp"
+#include "sph/wall_clock.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -33,12 +34,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // How a run ended, as run.json's "status" says it.
 enum class RunStatus { completed, interrupted, unstable, failed };

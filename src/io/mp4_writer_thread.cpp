@@ -1,20 +1,12 @@
 #include "io/mp4_writer_thread.hpp"
 
+#include "sph/wall_clock.hpp"
+
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
 
 namespace sph {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-} // namespace
-
 Mp4WriterThread::Mp4WriterThread(const std::filesystem::path& path, int width, int height,
                                  double fps, const Mp4Options& options, std::size_t capacity,
                                  EncodeThread thread)

@@ -4,18 +4,9 @@
 #include "render/gl_resources.hpp"
 #include "render/overlay.hpp"
 #include "render/scenery.hpp"
+#include "sph/wall_clock.hpp"
 
 namespace sph {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-} // namespace
 
 Image finish_frame(Scenery& scenery, Overlay& overlay, FlatPainter& painter,
                    gl::RenderTarget& target, const Camera& camera, const Snapshot& frame,

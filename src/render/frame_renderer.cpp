@@ -7,20 +7,11 @@
 #include "render/particle_batch.hpp"
 #include "render/scenery.hpp"
 #include "render/sphere_pass.hpp"
+#include "sph/wall_clock.hpp"
 
 #include <chrono>
 
 namespace sph {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-} // namespace
 
 // Everything that lives on the GPU or is reused from frame to frame, in the
 // order the frame uses it. A second way of drawing the fluid (a surface

@@ -14,8 +14,9 @@
 //   computes inside one of its own stages (a viscosity joining wcsph's
 //   pressure pass) has a row that says which, its time being that stage's.
 
+#include "sph/wall_clock.hpp"
+
 #include <array>
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -91,20 +92,18 @@ class StageTimes {
     class Scope {
       public:
         Scope(StageTimes* times, StageName name)
-            : times_(times), name_(name), start_(std::chrono::steady_clock::now()) {}
+            : times_(times), name_(name), start_(Clock::now()) {}
         Scope(const Scope&) = delete;
         Scope& operator=(const Scope&) = delete;
         ~Scope() {
             if (times_)
-                times_->add(name_,
-                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_)
-                                .count());
+                times_->add(name_, seconds_since(start_));
         }
 
       private:
         StageTimes* times_;
         StageName name_;
-        std::chrono::steady_clock::time_point start_;
+        Clock::time_point start_;
     };
 
     void add(StageName name, double seconds) { entry(name).seconds += seconds; }

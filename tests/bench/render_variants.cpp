@@ -1,5 +1,6 @@
 #include "render_variants.hpp"
 
+#include "sph/wall_clock.hpp"
 #include "render/camera.hpp"
 #include "render/frame_end.hpp"
 #include "render/gl_resources.hpp"
@@ -21,12 +22,6 @@
 namespace sph {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The renderer's groups (square_group, triangle_group), then the flat discs.
 constexpr std::size_t flat_group = 2, groups = 3;

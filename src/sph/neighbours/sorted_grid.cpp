@@ -1,6 +1,7 @@
 #include "sph/neighbours/sorted_grid.hpp"
 
 #include "sph/headroom.hpp"
+#include "sph/wall_clock.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -29,10 +30,6 @@ constexpr std::size_t table_keys_per_particle = 8;
 constexpr std::size_t min_table_keys = 1 << 16;
 constexpr int radix_bits = 11;
 constexpr std::uint64_t empty_slot = ~std::uint64_t(0);
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Squared distances from p to the gathered candidates, summed in the order
 // glm::dot sums, so a pair is in or out exactly as in AllPairs. Separate

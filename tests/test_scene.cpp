@@ -227,7 +227,7 @@ TEST_CASE("a value out of its range names the field", "[scene]") {
         {"/render/size", "[0, 720]", "render.size", "between 1 and"},
         {"/render/size", "[1280, 0]", "render.size", "between 1 and"},
         {"/render/size", "[1280]", "render.size", "2 integers"},
-        {"/render/camera/fov", "180", "render.camera.fov", "below 180"},
+        {"/render/camera/fov", "180", "render.camera.fov", "3D camera key"},
         {"/domain/max", "[0.1, 0]", "domain", "min must be below max"},
         {"/domain/min", "[0.1, 0]", "domain", "min must be below max"},
         {"/fluid/blocks/0/max", "[0, 0.03]", "fluid.blocks[0]", "min must be below max"},

@@ -391,6 +391,8 @@ class ClipRun {
         const std::vector<StageRow> stages = record_timings(seconds);
         if (render_ && !render_->warnings().empty())
             record_.document["warnings"] = render_->warnings();
+        if (render_ && !render_->poses().empty())
+            record_.document["camera"] = record_cameras(*render_);
         std::string run_json_note;
         try {
             run_json_note = record_.finish(status_name(end.status), written_, sim_.steps(),
@@ -517,6 +519,51 @@ class ClipRun {
             }
         }
         return errors;
+    }
+
+    // run.json "camera": the first and last frames' cameras as render.camera
+    // blocks to paste into a scene (each reproduces its frame), and every
+    // frame's in camera.csv beside it.
+    json record_cameras(const RenderSink& render) const {
+        const auto& poses = render.poses();
+        const int dim = render.dimension();
+        json out = {{"fit", render.camera_fit()},
+                    {"first_frame", poses.front().frame},
+                    {"first", camera_block(poses.front().pose, dim)},
+                    {"last_frame", poses.back().frame},
+                    {"last", camera_block(poses.back().pose, dim)}};
+        std::string csv = dim == 2 ? "frame,time_s,centre_x_m,centre_y_m,height_m\n"
+                                   : "frame,time_s,position_x_m,position_y_m,position_z_m,"
+                                     "target_x_m,target_y_m,target_z_m,up_x,up_y,up_z,fov_deg\n";
+        for (const auto& p : poses) {
+            const CameraPose& c = p.pose;
+            csv += dim == 2 ? fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g}\n", p.frame, p.time,
+                                          c.target.x, c.target.y, c.height)
+                            : fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
+                                          "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
+                                          p.frame, p.time, c.position.x, c.position.y, c.position.z,
+                                          c.target.x, c.target.y, c.target.z, c.up.x, c.up.y,
+                                          c.up.z, c.fov);
+        }
+        try {
+            write_file_atomically(folder_ / "camera.csv", csv);
+            out["frames"] = "camera.csv";
+        } catch (const std::exception& e) {
+            out["frames"] = fmt::format("camera.csv not written: {}", e.what());
+        }
+        return out;
+    }
+
+    static json camera_block(const CameraPose& pose, int dimension) {
+        auto vector = [](const glm::dvec3& v, int n) {
+            return std::vector<double>(&v[0], &v[0] + n);
+        };
+        if (dimension == 2)
+            return {{"centre", vector(pose.target, 2)}, {"height", pose.height}};
+        return {{"position", vector(pose.position, 3)},
+                {"target", vector(pose.target, 3)},
+                {"up", vector(pose.up, 3)},
+                {"fov", pose.fov}};
     }
 
     // run.json "timings" (per frame and in all) and "stages"; returns the

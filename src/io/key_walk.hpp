@@ -207,7 +207,7 @@ std::vector<S> read_list(FieldReader& r, const KeyList<S>& list, int dimension, 
         }
         for (const Key<S>& key : *keys)
             if (key.required && !r.present(key_path(prefix, key.path)))
-                r.fail(key_path(prefix, key.path), missing);
+                r.fail(key_path(prefix, key.path), missing.empty() ? "is required" : missing);
         for (const Key<S>& key : list.keys)
             if (key.applies && !key.applies(element) && r.present(key_path(p, key.path)))
                 r.fail(key_path(p, key.path), key.refused);

@@ -339,9 +339,6 @@ void check_clip(const FieldReader& r, const Scene& s) {
                                          "a double",
                                          "xyz"[a], s.domain.min[a], s.domain.max[a]));
     }
-    if (s.render.camera.fov >= 180)
-        r.fail("render.camera.fov",
-               fmt::format("must be below 180 degrees, got {}", s.render.camera.fov));
     if (s.fluid.blocks.empty())
         r.fail("fluid.blocks", "the scene has no fluid: give at least one block");
 }
@@ -593,7 +590,7 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     s.effects.paddles = read_list(r, paddle_keys(), dim);
     read_keys(r, "render", render_keys(), d.render, s.render, dim);
     check_render_range(r, s);
-    read_keys(r, "render.camera", camera_keys(), d.render.camera, s.render.camera, dim);
+    read_camera(r, s);
     read_keys(r, "output", output_keys(), d.output, s.output, dim);
     check_output_name(r, s);
     r.reject_unknown_keys();
@@ -896,7 +893,7 @@ json to_json(const Scene& s) {
     out["watchdog"] = write_keys(watchdog_keys(), r.watchdog, dim);
     out["effects"] = effects;
     out["render"] = write_keys(render_keys(), r.render, dim);
-    out["render"]["camera"] = write_keys(camera_keys(), r.render.camera, dim);
+    out["render"]["camera"] = write_camera(r.render.camera, dim);
     out["output"] = write_keys(output_keys(), r.output, dim);
     return out;
 }

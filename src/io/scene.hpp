@@ -126,9 +126,33 @@ struct Scene {
         std::optional<std::string> caption; // {time} {frame} {steps}; default time and frame
         std::optional<std::string> font;    // a font file; default DejaVu Sans
         struct Camera {
-            std::optional<Vec3> position; // m; default frames the domain
-            std::optional<Vec3> target;   // m; default the domain centre
+            // What the default camera frames: the domain, the fluid where it
+            // starts (blocks and emitters), or the fluid's bounds as they move.
+            std::string fit = "domain";   // domain | fluid | follow
+            std::optional<Vec3> position; // m (3D); default from `fit`
+            std::optional<Vec3> target;   // m (3D); default from `fit`
+            std::optional<Vec3> up;       // 3D; default +y
             double fov = 40;              // degrees, vertical (3D)
+            std::optional<Vec3> centre;   // m (2D): the view's centre; default from `fit`
+            std::optional<double> height; // m (2D): the height of plane in view
+            // A camera path: keyframes in time (render/camera.hpp interpolates).
+            struct Keyframe {
+                double time = 0;                      // s
+                std::optional<Vec3> position, target; // m (3D)
+                std::optional<Vec3> up;               // 3D; default +y
+                std::optional<double> fov;            // degrees (3D); default `fov`
+                std::optional<Vec3> centre;           // m (2D)
+                std::optional<double> height;         // m (2D)
+            };
+            std::vector<Keyframe> path;
+            // Round the fit's target over the clip (3D).
+            struct Orbit {
+                double turns = 1;               // over the clip; negative: clockwise from above
+                double elevation_deg = 20;      // above the horizontal
+                double start_deg = 30;          // azimuth at t = 0, from +z towards +x
+                std::optional<double> distance; // m; default the fit's, the same all round
+            };
+            std::optional<Orbit> orbit;
         } camera;
     } render;
 

@@ -8,9 +8,11 @@
 // changes.
 
 #include "render/render_settings.hpp"
+#include "sph/snapshot.hpp"
 
 #include <array>
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace sph {
 
@@ -48,14 +50,87 @@ double scene_aspect(const RenderSettings& settings);
 // scene's rectangle keeps; 0: the scene fills the room left (3D).
 FrameLayout layout_frame(int width, int height, const OverlayRoom& room = {}, double aspect = 0);
 
-// Where a 3D scene is seen from.
+// Where the scene is seen from. 3D: position, target, up and fov; 2D: the
+// region of the plane in view, centred on target (x, y), `height` tall
+// (0: the domain fitted).
 struct CameraPose {
     glm::dvec3 position{0}, target{0}; // m
-    double fov = 40;                   // degrees, vertical
+    glm::dvec3 up{0, 1, 0};
+    double fov = 40;   // degrees, vertical
+    double height = 0; // m, 2D
 };
 
-// The scene's fixed camera (RenderSettings' camera_position, camera_target, fov).
+// The scene's fixed camera (RenderSettings' camera_position, camera_target,
+// camera_up, fov and view_height).
 CameraPose fixed_pose(const RenderSettings& settings);
+
+// The direction from the target to the default camera: 30 degrees round
+// from +z towards +x, 20 degrees above the horizontal.
+glm::dvec3 view_direction(double azimuth_deg, double elevation_deg);
+glm::dvec3 default_view_direction();
+
+// 3D: the pose from `direction` (target to eye) at which the box [lo, hi]
+// fills a frame of `aspect` (width / height) at `fov` with a 3% margin, the
+// nearest such distance. `centre`: the target moved across the view so the
+// box's image is centred; else the box's centre.
+CameraPose fit_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3& direction,
+                   const glm::dvec3& up, double fov, double aspect, bool centre = true);
+
+// 3D: the aspect (width / height) of the box's image from `pose`, taken
+// symmetric about the view's axis.
+double image_aspect(const glm::dvec3& lo, const glm::dvec3& hi, const CameraPose& pose);
+
+// 2D: the region of the plane that shows the box [lo, hi] whole in a frame
+// of `aspect`, kept inside the domain where it is smaller than the domain
+// and never larger than the domain fitted.
+CameraPose fit_region(const glm::dvec3& lo, const glm::dvec3& hi, double aspect,
+                      const RenderSettings& settings);
+
+// The camera along a path at time t (s): cubic Hermite between keyframes,
+// with Catmull-Rom tangents for uneven times, (p[k+1] - p[k-1]) / (t[k+1] -
+// t[k-1]), one-sided at the ends; fov and height in log so they stay
+// positive. Exactly a keyframe at its time; held before the first and after
+// the last.
+CameraPose path_pose(const std::vector<RenderSettings::CameraKeyframe>& path, double t,
+                     int dimension);
+
+// Bounds that follow a moving set of points without jitter and without
+// losing any: they widen at once to take in every point and narrow towards
+// the points' bounds exponentially, with time constant `tau` (s).
+class FollowedBounds {
+  public:
+    explicit FollowedBounds(double tau = 0.5) : tau_(tau) {}
+    void update(const glm::dvec3& lo, const glm::dvec3& hi, double time);
+    const glm::dvec3& lo() const { return lo_; }
+    const glm::dvec3& hi() const { return hi_; }
+
+  private:
+    double tau_;
+    bool started_ = false;
+    double time_ = 0;
+    glm::dvec3 lo_{0}, hi_{0};
+};
+
+// Each frame's pose from the settings: fixed, fitted (domain, fluid,
+// follow), along a path or round an orbit. Frames come in order (follow
+// keeps the bounds of the frames before).
+class CameraRig {
+  public:
+    // `aspect`: the scene rectangle's width / height.
+    CameraRig(const RenderSettings& settings, double aspect);
+    CameraPose pose(const Snapshot& frame);
+
+  private:
+    CameraPose fitted(const glm::dvec3& lo, const glm::dvec3& hi, bool pad, double time) const;
+    const RenderSettings& settings_;
+    double aspect_;
+    FollowedBounds followed_;
+};
+
+// The layout for the settings: 2D the domain's aspect; 3D with
+// frame_to_domain the domain's image from the default camera (fov 40, so
+// that the layout does not move with a camera's fov); else the room.
+FrameLayout layout_for(const RenderSettings& settings, const OverlayRoom& room);
 
 // One frame's transforms. Positions are relative to `origin`, the domain's
 // centre: floats stay exact far from the scene's origin.

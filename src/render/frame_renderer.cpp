@@ -9,6 +9,7 @@
 #include "render/sphere_pass.hpp"
 #include "sph/wall_clock.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 namespace sph {
@@ -27,12 +28,16 @@ struct FrameRenderer::Parts {
     Overlay overlay;
     // The overlay's room measured, the scene's place around it.
     FrameLayout layout;
+    // Each frame's camera, fitted into the scene's place.
+    CameraRig rig;
+    CameraPose pose;
 
     explicit Parts(const RenderSettings& s)
         : target(s.width, s.height, s.samples),
           colour_map(gl::make_colour_map_texture(s.colour_map)), outline_rule(s),
           batch(s, outline_groups), spheres(s), scenery(s), overlay(s),
-          layout(layout_frame(s.width, s.height, overlay.room(), scene_aspect(s))) {}
+          layout(layout_for(s, overlay.room())),
+          rig(s, layout.scene.width / std::max(1.0, layout.scene.height)) {}
 };
 
 FrameRenderer::FrameRenderer(const RenderSettings& settings)
@@ -44,6 +49,10 @@ FrameRenderer::~FrameRenderer() = default;
 
 const std::string& FrameRenderer::font_warning() const {
     return parts_->overlay.font_warning();
+}
+
+const CameraPose& FrameRenderer::last_pose() const {
+    return parts_->pose;
 }
 
 std::size_t FrameRenderer::last_drawn() const {
@@ -64,7 +73,8 @@ Image FrameRenderer::render(const Snapshot& frame) {
     Parts& p = *parts_;
     const auto start = Clock::now();
     // The scene's camera, fitted into the room the overlay leaves.
-    const Camera camera = make_camera(settings_, fixed_pose(settings_), p.layout);
+    p.pose = p.rig.pose(frame);
+    const Camera camera = make_camera(settings_, p.pose, p.layout);
     // Which particles to draw, and on which outline.
     p.batch.fill(frame, camera, p.outline_rule);
     timings_.fill_seconds = seconds_since(start);

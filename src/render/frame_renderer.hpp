@@ -8,6 +8,7 @@
 // overlay (overlay.hpp) and the GL objects' lifetime (gl_resources.hpp).
 
 #include "io/image.hpp"
+#include "render/camera.hpp"
 #include "render/render_settings.hpp"
 #include "sph/snapshot.hpp"
 
@@ -41,6 +42,8 @@ class FrameRenderer {
     std::size_t last_below_range() const;
     std::size_t last_above_range() const;
     const RenderSettings& settings() const { return settings_; }
+    // The camera of the last frame (render/camera.hpp).
+    const CameraPose& last_pose() const;
     // Why the overlay's text is not in the font asked for (empty: it is).
     const std::string& font_warning() const;
 

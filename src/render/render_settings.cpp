@@ -111,22 +111,67 @@ RenderSettings make_render_settings(const Scene& scene) {
         r.range_key = "render.range";
     }
 
-    r.fov = scene.render.camera.fov;
-    const glm::dvec3 centre = 0.5 * (r.domain_min + r.domain_max);
-    r.camera_target = centre;
-    if (scene.render.camera.target)
-        r.camera_target = {(*scene.render.camera.target)[0], (*scene.render.camera.target)[1],
-                           (*scene.render.camera.target)[2]};
-    if (scene.render.camera.position) {
-        r.camera_position = {(*scene.render.camera.position)[0], (*scene.render.camera.position)[1],
-                             (*scene.render.camera.position)[2]};
-    } else {
-        // From the front, right and above, at the distance where the domain's
-        // bounding sphere would just fit the vertical field of view; a box
-        // fills less than its sphere, so come a little closer.
-        const double radius = 0.5 * glm::length(r.domain_max - r.domain_min);
-        const double distance = 0.85 * radius / std::sin(glm::radians(0.5 * r.fov));
-        r.camera_position = r.camera_target + distance * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
+    const auto& camera = scene.render.camera;
+    auto vec = [](const Vec3& v) {
+        return glm::dvec3(v[0], v[1], v[2]);
+    };
+    r.fov = camera.fov;
+    r.camera_fit = camera.fit;
+    r.fps = scene.fps;
+    r.duration = scene.duration;
+    r.frame_to_domain = scene.dimension == 3;
+    r.camera_target = 0.5 * (r.domain_min + r.domain_max);
+    if (camera.up)
+        r.camera_up = vec(*camera.up);
+    if (camera.target) {
+        r.camera_target = vec(*camera.target);
+        r.target_given = true;
+    }
+    if (camera.centre) {
+        r.camera_target = glm::dvec3((*camera.centre)[0], (*camera.centre)[1], 0);
+        r.centre_given = true;
+    }
+    r.view_height = camera.height.value_or(0);
+    if (camera.position)
+        r.camera_position = vec(*camera.position);
+    r.camera_fixed = camera.position.has_value() || (camera.centre && camera.height);
+    // Where the fluid starts: its blocks, and the emitters' inlets.
+    r.fluid_min = glm::dvec3(1e300);
+    r.fluid_max = glm::dvec3(-1e300);
+    auto take = [&](const Vec3& lo, const Vec3& hi) {
+        for (int a = 0; a < scene.dimension; ++a) {
+            r.fluid_min[a] = std::min(r.fluid_min[a], lo[a]);
+            r.fluid_max[a] = std::max(r.fluid_max[a], hi[a]);
+        }
+    };
+    for (const FluidBlock& b : scene.fluid.blocks)
+        take(b.min, b.max);
+    for (const SceneEmitter& e : scene.effects.emitters)
+        take(e.min, e.max);
+    for (int a = scene.dimension; a < 3; ++a)
+        r.fluid_min[a] = r.fluid_max[a] = 0;
+    for (const auto& k : camera.path) {
+        RenderSettings::CameraKeyframe key;
+        key.time = k.time;
+        if (scene.dimension == 3) {
+            key.position = vec(*k.position);
+            key.target = vec(*k.target);
+            if (k.up)
+                key.up = vec(*k.up);
+            key.fov = k.fov.value_or(camera.fov);
+        } else {
+            key.target = glm::dvec3((*k.centre)[0], (*k.centre)[1], 0);
+            key.height = *k.height;
+        }
+        r.camera_path.push_back(key);
+    }
+    if (!r.camera_path.empty())
+        r.camera_fixed = false;
+    if (camera.orbit) {
+        r.orbit =
+            RenderSettings::Orbit{camera.orbit->turns, camera.orbit->elevation_deg,
+                                  camera.orbit->start_deg, camera.orbit->distance.value_or(0)};
+        r.camera_fixed = false;
     }
     r.cull_buried = scene.dimension == 3 && scene.render.cull_buried;
     return r;

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,9 +35,38 @@ struct RenderSettings {
     // the frame's time: the motion is known in closed form, so the snapshot
     // need not carry it.
     std::vector<Paddle<3>> paddles;
-    glm::dvec3 camera_position{0}, camera_target{0}; // 3D
+    glm::dvec3 camera_position{0}, camera_target{0}; // 3D; 2D: the target is the view's centre
     double fov = 40;                                 // degrees, vertical
-    int samples = 4;                                 // multisampling
+    // The camera, resolved per frame by CameraRig (render/camera.hpp).
+    // camera_fixed: camera_position, camera_target, camera_up and fov (3D),
+    // or camera_target and view_height (2D) as they are, with view_height 0
+    // the domain. Otherwise the camera is fitted (camera_fit), with
+    // target_given, centre_given or view_height > 0 kept as given, or moved
+    // along camera_path, or round an orbit.
+    bool camera_fixed = true;
+    std::string camera_fit = "domain"; // domain | fluid | follow
+    glm::dvec3 camera_up{0, 1, 0};
+    double view_height = 0; // m, 2D
+    bool target_given = false, centre_given = false;
+    glm::dvec3 fluid_min{0}, fluid_max{0}; // where the fluid starts: blocks and emitters
+    struct CameraKeyframe {
+        double time = 0;                   // s
+        glm::dvec3 position{0}, target{0}; // m; 2D: the target is the centre
+        glm::dvec3 up{0, 1, 0};
+        double fov = 40, height = 0; // degrees (3D), m (2D)
+    };
+    std::vector<CameraKeyframe> camera_path; // in increasing time
+    struct Orbit {
+        double turns = 1, elevation_deg = 20, start_deg = 30; // degrees
+        double distance = 0;                                  // m; 0: from the fit
+    };
+    std::optional<Orbit> orbit;
+    double fps = 0, duration = 0; // the clip's; fps 0: a frame's time is its snapshot's
+    // 3D: the scene's rectangle takes the aspect of the domain as the default
+    // camera sees it, so the colour bar sits beside the tank; false: the
+    // room the overlay leaves. make_render_settings sets it for 3D scenes.
+    bool frame_to_domain = false;
+    int samples = 4; // multisampling
     // Skip particles the snapshot marks as buried deep in the fluid (3D).
     bool cull_buried = false;
     // Impostors narrower than this (px) are drawn on one triangle around the

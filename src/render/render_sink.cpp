@@ -40,6 +40,7 @@ void RenderSink::write(const Snapshot& frame) {
     cost.render_s = renderer_.last_timings().draw_seconds;
     cost.readback_s = renderer_.last_timings().readback_seconds;
     costs_.push_back(cost);
+    poses_.push_back({frame.frame, double(frame.time), renderer_.last_pose()});
     check_range(frame);
     if (mp4_)
         mp4_->submit(image);

@@ -51,6 +51,15 @@ class RenderSink final : public FrameSink {
     // What the frames showed that the user should know (run.json
     // "warnings"), in the order they arose; each arises once a run.
     const std::vector<std::string>& warnings() const { return warnings_; }
+    // Each written frame's camera, in order (run.json "camera", camera.csv).
+    struct FramePose {
+        std::uint64_t frame = 0;
+        double time = 0; // s, the snapshot's
+        CameraPose pose;
+    };
+    const std::vector<FramePose>& poses() const { return poses_; }
+    int dimension() const { return renderer_.settings().dimension; }
+    const std::string& camera_fit() const { return renderer_.settings().camera_fit; }
 
   private:
     void check_range(const Snapshot& frame);
@@ -62,6 +71,7 @@ class RenderSink final : public FrameSink {
     std::unique_ptr<Mp4WriterThread> mp4_;
     std::vector<FrameCost> costs_;
     std::vector<std::string> warnings_;
+    std::vector<FramePose> poses_;
     bool range_warned_ = false;
 };
 

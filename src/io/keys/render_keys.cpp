@@ -1,6 +1,9 @@
 // The render object's keys: the scene's side of the renderer's settings
 // (render/frame_renderer.hpp turns them into its own).
+#include "io/key_walk.hpp"
 #include "io/keys/scene_keys.hpp"
+
+#include <cmath>
 
 namespace sph {
 
@@ -74,25 +77,257 @@ const KeyTable<Scene::Render>& render_keys() {
 const KeyTable<Scene::Render::Camera>& camera_keys() {
     using S = Scene::Render::Camera;
     static const KeyTable<S> keys{
+        {.path = "fit",
+         .field = &S::fit,
+         .doc = "What the default camera frames: domain (the tank, fixed), fluid (where the "
+                "fluid starts: its blocks and emitters, fixed) or follow (the fluid's bounds "
+                "over time, smoothed: it widens at once to keep every particle in view and "
+                "narrows with a 0.5 s time constant). 2D: the region of the plane in view; 3D: "
+                "the distance and target at which the box fills the frame at `fov`.",
+         .choices = {"domain", "fluid", "follow"}},
         {.path = "position",
          .field = &S::position,
          .unit = "m",
-         .doc = "Camera position (3D scenes).",
-         .absent = "frames the domain",
+         .doc = "Camera position (3D scenes only).",
+         .absent = "from fit: front right, 20 degrees above",
          .size = VectorSize::three},
         {.path = "target",
          .field = &S::target,
          .unit = "m",
-         .doc = "Point the camera looks at (3D scenes).",
-         .absent = "domain centre",
+         .doc = "Point the camera looks at (3D scenes only).",
+         .absent = "from fit: the framed box's centre",
+         .size = VectorSize::three},
+        {.path = "up",
+         .field = &S::up,
+         .doc = "The direction that is up in the image (3D scenes only); must not be along the "
+                "view.",
+         .absent = "[0, 1, 0]",
          .size = VectorSize::three},
         {.path = "fov",
          .field = &S::fov,
          .unit = "degrees",
-         .doc = "Vertical field of view (3D scenes).",
+         .doc = "Vertical field of view (3D scenes only), below 180.",
          .bound = Bound::positive},
+        {.path = "centre",
+         .field = &S::centre,
+         .unit = "m",
+         .doc = "The centre of the plane's region in view (2D scenes only).",
+         .absent = "from fit",
+         .size = VectorSize::two},
+        {.path = "height",
+         .field = &S::height,
+         .unit = "m",
+         .doc = "The height of the plane's region in view (2D scenes only); its width follows "
+                "from the frame's aspect.",
+         .bound = Bound::positive,
+         .absent = "from fit"},
     };
     return keys;
+}
+
+const KeyList<Scene::Render::Camera::Keyframe>& camera_path_keys() {
+    using S = Scene::Render::Camera::Keyframe;
+    static const KeyList<S> list{
+        .path = "render.camera.path",
+        .doc = "Camera keyframes, in increasing time; between them the camera moves on a cubic "
+               "Hermite curve with Catmull-Rom tangents (position, target, up; fov and height "
+               "in log), before the first and after the last it holds still.",
+        .keys = {{.path = "time",
+                  .field = &S::time,
+                  .unit = "s",
+                  .doc = "When the camera is at this keyframe.",
+                  .bound = Bound::non_negative,
+                  .absent = "required",
+                  .required = true},
+                 {.path = "position",
+                  .field = &S::position,
+                  .unit = "m",
+                  .doc = "Camera position (3D; required there).",
+                  .absent = "required in 3D",
+                  .size = VectorSize::three},
+                 {.path = "target",
+                  .field = &S::target,
+                  .unit = "m",
+                  .doc = "Point looked at (3D; required there).",
+                  .absent = "required in 3D",
+                  .size = VectorSize::three},
+                 {.path = "up",
+                  .field = &S::up,
+                  .doc = "Up in the image (3D).",
+                  .absent = "[0, 1, 0]",
+                  .size = VectorSize::three},
+                 {.path = "fov",
+                  .field = &S::fov,
+                  .unit = "degrees",
+                  .doc = "Vertical field of view (3D), below 180.",
+                  .bound = Bound::positive,
+                  .absent = "render.camera.fov"},
+                 {.path = "centre",
+                  .field = &S::centre,
+                  .unit = "m",
+                  .doc = "Centre of the view (2D; required there).",
+                  .absent = "required in 2D",
+                  .size = VectorSize::two},
+                 {.path = "height",
+                  .field = &S::height,
+                  .unit = "m",
+                  .doc = "Height of the view (2D; required there).",
+                  .bound = Bound::positive,
+                  .absent = "required in 2D"}},
+        .check = [](const S& k, int dimension) -> std::optional<KeyProblem> {
+            if (dimension == 2) {
+                const char* three_d = k.position ? "position"
+                                      : k.target ? "target"
+                                      : k.up     ? "up"
+                                      : k.fov    ? "fov"
+                                                 : nullptr;
+                if (three_d)
+                    return KeyProblem{three_d,
+                                      "is a 3D key; a 2D keyframe gives centre and height"};
+                if (!k.centre)
+                    return KeyProblem{"centre", "a 2D keyframe needs centre and height"};
+                if (!k.height)
+                    return KeyProblem{"height", "a 2D keyframe needs centre and height"};
+                return std::nullopt;
+            }
+            if (k.centre || k.height)
+                return KeyProblem{k.centre ? "centre" : "height",
+                                  "is a 2D key; a 3D keyframe gives position and target"};
+            if (!k.position)
+                return KeyProblem{"position", "a 3D keyframe needs position and target"};
+            if (!k.target)
+                return KeyProblem{"target", "a 3D keyframe needs position and target"};
+            if (*k.position == *k.target)
+                return KeyProblem{"position", "equals the keyframe's target: the camera needs a "
+                                              "direction to look along"};
+            if (k.fov && *k.fov >= 180)
+                return KeyProblem{"fov", fmt::format("must be below 180 degrees, got {}", *k.fov)};
+            return std::nullopt;
+        }};
+    return list;
+}
+
+const KeyTable<Scene::Render::Camera::Orbit>& orbit_keys() {
+    using S = Scene::Render::Camera::Orbit;
+    static const KeyTable<S> keys{
+        {.path = "turns",
+         .field = &S::turns,
+         .doc = "Turns round the fit's target over the clip (3D); negative: clockwise seen from "
+                "above."},
+        {.path = "elevation_deg",
+         .field = &S::elevation_deg,
+         .unit = "degrees",
+         .doc = "The camera's height above the target's horizontal plane, as an angle, -89 to "
+                "89."},
+        {.path = "start_deg",
+         .field = &S::start_deg,
+         .unit = "degrees",
+         .doc = "The camera's azimuth at t = 0, from +z towards +x."},
+        {.path = "distance",
+         .field = &S::distance,
+         .unit = "m",
+         .doc = "From the target; by default the least at which the fit's box fills the frame "
+                "from every azimuth, the same all round.",
+         .bound = Bound::positive,
+         .absent = "from fit"},
+    };
+    return keys;
+}
+
+namespace {
+
+// Where a key given only for the other dimension is refused.
+void refuse_for_dimension(const FieldReader& r, int dimension) {
+    const bool flat = dimension == 2;
+    const std::vector<std::string> other =
+        flat ? std::vector<std::string>{"position", "target", "up", "fov", "orbit"}
+             : std::vector<std::string>{"centre", "height"};
+    for (const std::string& key : other)
+        if (r.present("render.camera." + key))
+            r.fail("render.camera." + key,
+                   flat ? "is a 3D camera key: a 2D scene is seen straight on; "
+                          "render.camera.centre and render.camera.height set its view"
+                        : "is a 2D camera key: a 3D scene's camera is set by "
+                          "render.camera.position, target, up and fov");
+}
+
+} // namespace
+
+void read_camera(FieldReader& r, Scene& s) {
+    using C = Scene::Render::Camera;
+    const int dim = s.dimension;
+    const C d;
+    refuse_for_dimension(r, dim);
+    read_keys(r, "render.camera", camera_keys(), d, s.render.camera, dim);
+    C& c = s.render.camera;
+    c.path = read_list(r, camera_path_keys(), dim);
+    for (std::size_t i = 1; i < c.path.size(); ++i)
+        if (!(c.path[i].time > c.path[i - 1].time))
+            r.fail(fmt::format("render.camera.path[{}].time", i),
+                   fmt::format("keyframe times must increase: {} s follows {} s", c.path[i].time,
+                               c.path[i - 1].time));
+    // The orbit's keys are read (and recorded) whether or not it is given.
+    const C::Orbit orbit = read_keys(r, "render.camera.orbit", orbit_keys(), C::Orbit{}, dim);
+    if (r.present("render.camera.orbit")) {
+        if (!r.find("render.camera.orbit")->is_object())
+            r.fail("render.camera.orbit",
+                   "expected an object, got " + describe(*r.find("render.camera.orbit")));
+        if (!(std::abs(orbit.elevation_deg) <= 89))
+            r.fail("render.camera.orbit.elevation_deg",
+                   fmt::format("must be between -89 and 89 degrees, got {}", orbit.elevation_deg));
+        c.orbit = orbit;
+    }
+    // One way of moving the camera at a time.
+    const bool fixed = c.position || c.target || c.centre || c.height;
+    if (!c.path.empty() && (c.orbit || fixed))
+        r.fail("render.camera.path",
+               c.orbit ? "given with render.camera.orbit: the camera follows one of them"
+                       : "given with a fixed camera (position, target, centre or height): the "
+                         "path's keyframes set the camera");
+    if (c.orbit && c.position)
+        r.fail("render.camera.orbit", "given with render.camera.position: the orbit sets "
+                                      "the position (its target may be given)");
+    if (c.fov >= 180)
+        r.fail("render.camera.fov", fmt::format("must be below 180 degrees, got {}", c.fov));
+    if (c.up && (*c.up)[0] == 0 && (*c.up)[1] == 0 && (*c.up)[2] == 0)
+        r.fail("render.camera.up", "must not be zero");
+    if (dim == 3 && c.position) {
+        // The target defaults to the domain's centre.
+        Vec3 target = c.target.value_or(Vec3{});
+        if (!c.target)
+            for (int a = 0; a < 3; ++a)
+                target[a] = 0.5 * (s.domain.min[a] + s.domain.max[a]);
+        if (*c.position == target)
+            r.fail("render.camera.position",
+                   fmt::format("equals the camera's target {}: the camera needs a direction to "
+                               "look along",
+                               format_vector(target, 3)));
+        const Vec3 up = c.up.value_or(Vec3{0, 1, 0});
+        const Vec3 view{target[0] - (*c.position)[0], target[1] - (*c.position)[1],
+                        target[2] - (*c.position)[2]};
+        const Vec3 cross{view[1] * up[2] - view[2] * up[1], view[2] * up[0] - view[0] * up[2],
+                         view[0] * up[1] - view[1] * up[0]};
+        const double v2 = view[0] * view[0] + view[1] * view[1] + view[2] * view[2];
+        const double u2 = up[0] * up[0] + up[1] * up[1] + up[2] * up[2];
+        const double c2 = cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2];
+        if (c2 <= 1e-12 * v2 * u2)
+            r.fail(c.up ? "render.camera.up" : "render.camera.position",
+                   "the view is along the up direction: give render.camera.up across it");
+    }
+}
+
+json write_camera(const Scene::Render::Camera& c, int dimension) {
+    json out = write_keys(camera_keys(), c, dimension);
+    // Only the keys of the scene's dimension: run.json's scene reads back.
+    for (const char* key : dimension == 2
+                               ? std::vector<const char*>{"position", "target", "up", "fov"}
+                               : std::vector<const char*>{"centre", "height"})
+        out.erase(key);
+    if (!c.path.empty())
+        out["path"] = write_list(camera_path_keys(), c.path, dimension);
+    if (c.orbit)
+        out["orbit"] = write_keys(orbit_keys(), *c.orbit, dimension);
+    return out;
 }
 
 } // namespace sph

@@ -20,6 +20,14 @@ const KeyTable<Scene::Watchdog>& watchdog_keys();
 // render_keys.cpp
 const KeyTable<Scene::Render>& render_keys();
 const KeyTable<Scene::Render::Camera>& camera_keys();
+const KeyList<Scene::Render::Camera::Keyframe>& camera_path_keys();
+const KeyTable<Scene::Render::Camera::Orbit>& orbit_keys();
+// Reads render.camera (its keys, path and orbit) after the domain, refusing
+// keys of the other dimension, a camera looking at its own position, and
+// keyframes out of order, each naming its key.
+void read_camera(FieldReader& r, Scene& s);
+// render.camera as read_camera reads it back.
+json write_camera(const Scene::Render::Camera& camera, int dimension);
 // output_keys.cpp
 const KeyTable<Scene::Output>& output_keys();
 

@@ -1,6 +1,5 @@
 #include "render_variants.hpp"
 
-#include "sph/wall_clock.hpp"
 #include "render/camera.hpp"
 #include "render/frame_end.hpp"
 #include "render/gl_resources.hpp"
@@ -8,6 +7,7 @@
 #include "render/particle_batch.hpp"
 #include "render/scenery.hpp"
 #include "render/sphere_pass.hpp"
+#include "sph/wall_clock.hpp"
 
 #include <algorithm>
 #include <array>

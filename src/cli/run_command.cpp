@@ -5,6 +5,7 @@
 #include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/output_folder.hpp"
+#include "parallel/world.hpp"
 #include "cli/progress.hpp"
 #include "cli/set_options.hpp"
 #include "cli/stop_signals.hpp"
@@ -215,6 +216,13 @@ int run_command(const RunOptions& given) {
                 "different state hashes\n",
                 build_git_commit());
     }
+    // Over MPI ranks (docs/mpi.md) rank 0 writes every output; the others
+    // step with it and write nothing, not even the folder.
+    if (!parallel::leader()) {
+        if (options.threads > 0)
+            omp_set_num_threads(options.threads);
+        return run_clip(scene, folder, options, nullptr);
+    }
     // The GL context before any output: when none can be made, nothing is written.
     std::unique_ptr<GlContext> gl_context;
     if (options.png || options.mp4)
@@ -226,7 +234,7 @@ int run_command(const RunOptions& given) {
             "sphclip: stopped by signal {} before the run started; nothing "
             "written\n",
             signal);
-        return exit_interrupted;
+        return parallel::end_job(exit_interrupted);
     }
     // Held until the run ends: no other run writes into the folder meanwhile.
     const OutputFolder output(folder);

@@ -420,9 +420,9 @@ class ClipRun {
             // Rank 0 records and tells; a failure here ends the job (main()).
             if (end.status == RunStatus::failed)
                 std::rethrow_exception(end.exception);
-            return end.status == RunStatus::completed   ? exit_success
+            return end.status == RunStatus::completed  ? exit_success
                    : end.status == RunStatus::unstable ? exit_unstable
-                                                        : exit_interrupted;
+                                                       : exit_interrupted;
         }
         if (const Partition<D>* partition = sim_.partition())
             record_.document["mpi"] = partition->report();

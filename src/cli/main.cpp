@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
     } catch (const sph::InputError& e) {
         if (sph::parallel::leader())
             sph::say(stderr, "sphclip: error: {}\n", e.what());
-        return sph::exit_bad_input;
+        return sph::parallel::end_job(sph::exit_bad_input);
     } catch (const std::exception& e) {
         sph::say(stderr, "sphclip: error: {}\n", e.what());
         // The other ranks may wait on this one in their next collective call.

@@ -5,12 +5,12 @@
 #include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/output_folder.hpp"
-#include "parallel/world.hpp"
 #include "cli/progress.hpp"
 #include "cli/set_options.hpp"
 #include "cli/stop_signals.hpp"
 #include "io/files.hpp"
 #include "io/input_error.hpp"
+#include "parallel/world.hpp"
 #include "render/gl_context.hpp"
 
 #include <CLI/CLI.hpp>
@@ -207,6 +207,13 @@ int run_command(const RunOptions& given) {
     const fs::path folder = recorded      ? rerun_folder(options, scene)
                             : options.out ? *options.out
                                           : output_folder(scene);
+    // Over MPI ranks (docs/mpi.md) rank 0 writes every output; the others
+    // step with it and write nothing, not even the folder.
+    if (!parallel::leader()) {
+        if (options.threads > 0)
+            omp_set_num_threads(options.threads);
+        return run_clip(scene, folder, options, nullptr);
+    }
     if (options.rerun_of && !options.quiet) {
         say("sphclip: re-running {} (sphclip {}, commit {}, started {})\n", options.scene->string(),
             options.rerun_of->sphclip_version, options.rerun_of->git_commit,
@@ -215,13 +222,6 @@ int run_command(const RunOptions& given) {
             say("sphclip: note: this sphclip is commit {}; a different build may give "
                 "different state hashes\n",
                 build_git_commit());
-    }
-    // Over MPI ranks (docs/mpi.md) rank 0 writes every output; the others
-    // step with it and write nothing, not even the folder.
-    if (!parallel::leader()) {
-        if (options.threads > 0)
-            omp_set_num_threads(options.threads);
-        return run_clip(scene, folder, options, nullptr);
     }
     // The GL context before any output: when none can be made, nothing is written.
     std::unique_ptr<GlContext> gl_context;

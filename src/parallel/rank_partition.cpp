@@ -102,8 +102,8 @@ class RankPartition final : public Partition<D> {
     // Rank r owns [first_[r], first_[r + 1]).
     void cut(std::size_t n) {
         for (int r = 0; r <= ranks_; ++r)
-            first_[std::size_t(r)] = std::size_t(std::uint64_t(n) * std::uint64_t(r) /
-                                                 std::uint64_t(ranks_));
+            first_[std::size_t(r)] =
+                std::size_t(std::uint64_t(n) * std::uint64_t(r) / std::uint64_t(ranks_));
     }
 
     // local_index_: the owned particles and those within the halo's reach
@@ -232,7 +232,8 @@ class RankPartition final : public Partition<D> {
             const std::size_t count =
                 (first_[std::size_t(r) + 1] - first_[std::size_t(r)]) * stride + trailer;
             counts_[std::size_t(r)] = int(count);
-            displacements_[std::size_t(r)] = int(first_[std::size_t(r)] * stride + std::size_t(r) * trailer);
+            displacements_[std::size_t(r)] =
+                int(first_[std::size_t(r)] * stride + std::size_t(r) * trailer);
         }
         receive_.resize(n * stride + std::size_t(ranks_) * trailer);
         MPI_Request request;
@@ -334,10 +335,9 @@ class RankPartition final : public Partition<D> {
 } // namespace
 
 template <int D>
-std::unique_ptr<Partition<D>> make_rank_partition(const Params<D>& params,
-                                                  std::string_view solver_name,
-                                                  const EffectList<D>& effects,
-                                                  const std::string& scene_file) {
+std::unique_ptr<Partition<D>>
+make_rank_partition(const Params<D>& params, std::string_view solver_name,
+                    const EffectList<D>& effects, const std::string& scene_file) {
     if (size() <= 1)
         return nullptr;
     // DFSPH's solves iterate neighbour sums to a tolerance on the mean

@@ -36,10 +36,9 @@ namespace sph::parallel {
 // ranks yet: dfsph, solver.precision single.
 #ifdef SPHCLIP_HAVE_MPI
 template <int D>
-std::unique_ptr<Partition<D>> make_rank_partition(const Params<D>& params,
-                                                  std::string_view solver_name,
-                                                  const EffectList<D>& effects,
-                                                  const std::string& scene_file);
+std::unique_ptr<Partition<D>>
+make_rank_partition(const Params<D>& params, std::string_view solver_name,
+                    const EffectList<D>& effects, const std::string& scene_file);
 #else
 template <int D>
 std::unique_ptr<Partition<D>> make_rank_partition(const Params<D>&, std::string_view,

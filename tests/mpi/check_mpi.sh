@@ -5,8 +5,9 @@
 # column but obstacle_pushes and wall_s, so every frame's state hash over all
 # particles), the same particle exports byte for byte, and a run.json that
 # records the ranks. Then: an MP4 from 2 ranks equal to the plain one (when
-# OpenGL works), SIGINT to mpirun finalising the MP4 (exit 130, run.json
-# "interrupted"), and dfsph refused on 2 ranks with exit 2, naming the key.
+# OpenGL works), SIGINT to mpirun finalising the MP4 (run.json
+# "interrupted"; mpirun itself exits 1), and dfsph refused on 2 ranks with
+# exit 2, naming the key.
 #
 #   tests/mpi/check_mpi.sh build/sphclip MPIRUN [CASE]
 #
@@ -142,16 +143,15 @@ check_interrupt() {
         cat "$out.log"
         fail "interrupt: run.json does not say interrupted (exit $code)"
     }
-    [ "$code" -eq 130 ] || {
-        cat "$out.log"
-        fail "interrupt: exit $code, not 130"
-    }
+    # Open MPI's mpirun turns SIGINT into SIGTERM to every rank (which stop
+    # together, rank 0 finishing its outputs) and exits 1 itself.
+    [ "$code" -ne 0 ] || fail "interrupt: mpirun exited 0"
     if [ -f "$out/clip.mp4" ]; then
         grep -q moov "$out/clip.mp4" || fail "interrupt: clip.mp4 has no index (not finalised)"
-        echo "mpi: interrupt: SIGINT to mpirun ends both ranks, exit 130, clip.mp4 finalised"
+        echo "mpi: interrupt: SIGINT to mpirun ends both ranks as interrupted, clip.mp4 finalised"
     else
         grep -q "OpenGL\|GL context" "$out.log" || fail "interrupt: no clip.mp4"
-        echo "mpi: interrupt: SIGINT to mpirun ends both ranks, exit 130 (no OpenGL: no MP4)"
+        echo "mpi: interrupt: SIGINT to mpirun ends both ranks as interrupted (no OpenGL: no MP4)"
     fi
 }
 

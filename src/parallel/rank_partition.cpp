@@ -32,7 +32,8 @@ constexpr std::size_t trailer = 2;
 template <int D>
 class RankPartition final : public Partition<D> {
   public:
-    explicit RankPartition(int hops) : hops_(hops), rank_(rank()), ranks_(size()) {
+    RankPartition(int hops, bool whole_cells)
+        : hops_(hops), whole_cells_(whole_cells), rank_(rank()), ranks_(size()) {
         first_.resize(std::size_t(ranks_) + 1);
         counts_.resize(std::size_t(ranks_));
         displacements_.resize(std::size_t(ranks_));
@@ -44,13 +45,16 @@ class RankPartition final : public Partition<D> {
                     StepContext<D>& context) override {
         const std::size_t n = state.size();
         cut(n);
-        select_local(params, dt, state);
-        copy_local(state);
         // The accelerations a Verlet step reuses are the whole state's: as
-        // current as on one rank, whatever subset this step holds.
+        // current as on one rank, whatever subset this step holds. When they
+        // are not (the first step, new particles), the step computes them
+        // before it drifts by them: nothing bounds that drift beforehand, so
+        // this step holds every particle.
+        const bool current = stepped_ && n == stepped_size_;
+        select_local(params, dt, state, params.integrator == Integrator::verlet && !current);
+        copy_local(state);
         if (auto* explicit_solver = dynamic_cast<ExplicitSolver<D>*>(&solver))
-            explicit_solver->set_accelerations_current(stepped_ && n == stepped_size_,
-                                                       local_.size());
+            explicit_solver->set_accelerations_current(current, local_.size());
         const auto start = std::chrono::steady_clock::now();
         // A rank that owns nothing (fewer particles than ranks) steps nothing.
         StepReport report = first_[std::size_t(rank_) + 1] > first_[std::size_t(rank_)]
@@ -108,7 +112,7 @@ class RankPartition final : public Partition<D> {
 
     // local_index_: the owned particles and those within the halo's reach
     // of one, by ascending memory position (so the owned ones are one run).
-    void select_local(const Params<D>& params, Real dt, const State<D>& state) {
+    void select_local(const Params<D>& params, Real dt, const State<D>& state, bool everyone) {
         const std::size_t n = state.size();
         const std::size_t begin = first_[std::size_t(rank_)], end = first_[std::size_t(rank_) + 1];
         // How far a step can move a particle (Verlet: half-kick, then drift)
@@ -128,11 +132,16 @@ class RankPartition final : public Partition<D> {
             a_max = std::max(a_max, std::sqrt(squared_length<D>(state.acceleration[i])));
         }
         const Real move = dt * v_max + dt * dt * a_max;
-        const Real reach = Real(hops_) * (params.h + 2 * move) * (1 + 1e-6);
+        // The float passes (solver.precision single) sum over every particle
+        // of the 3^D cells around a particle's cell, a lane per candidate:
+        // the same bits need the same candidates, every particle of the
+        // cells within `hops` cells of an owned one's, so one cell further.
+        const Real reach =
+            Real(hops_ + (whole_cells_ ? 1 : 0)) * (params.h * (1 + 1e-5) + 2 * move) * (1 + 1e-6);
         local_index_.clear();
         std::size_t cells = 1;
         std::array<std::size_t, D> dims{};
-        bool everyone = !(reach > 0) || !std::isfinite(reach) || !(lo[0] <= hi[0]);
+        everyone = everyone || !(reach > 0) || !std::isfinite(reach) || !(lo[0] <= hi[0]);
         for (int a = 0; a < D && !everyone; ++a) {
             const Real extent = (hi[a] - lo[a]) / reach;
             everyone = !(extent < Real(max_cells_per_particle * (n + 64)));
@@ -311,6 +320,7 @@ class RankPartition final : public Partition<D> {
     }
 
     const int hops_;
+    const bool whole_cells_;
     const int rank_, ranks_;
     std::vector<std::size_t> first_;
     std::vector<std::uint32_t> local_index_;
@@ -346,17 +356,21 @@ make_rank_partition(const Params<D>& params, std::string_view solver_name,
         throw InputError(scene_file, "solver.name",
                          "dfsph does not run over MPI ranks yet (its pressure solves need a halo "
                          "exchange per iteration); use wcsph or seed, or run on one rank");
-    // The float passes gather a cell's neighbourhood in the order of a grid
-    // over the particles held, which differs between ranks: not the same bits.
-    if (params.precision == Precision::single)
-        throw InputError(scene_file, "solver.precision",
-                         "single precision does not run over MPI ranks yet; use double, or run "
-                         "on one rank");
+    // The float passes gather a cell's neighbourhood in the order of the
+    // grid over the fluid and wall particles: the same grid on every rank
+    // only when the domain's wall particles bound it, as they bound the
+    // fluid.
+    const bool single = params.precision == Precision::single;
+    if (single && params.walls != WallModel::particles)
+        throw InputError(scene_file, "solver.walls",
+                         "single precision over MPI ranks needs wall particles (solver.walls "
+                         "particles): with reflecting walls each rank's grid would differ; use "
+                         "solver.precision double, or run on one rank");
     int hops = 2; // density, then the forces that read the neighbours' densities
     for (const auto& effect : effects)
         if (dynamic_cast<const SurfaceTension<D>*>(effect.get()))
             hops = 3; // normals from densities, then forces from normals
-    return std::make_unique<RankPartition<D>>(hops);
+    return std::make_unique<RankPartition<D>>(hops, single);
 }
 
 template std::unique_ptr<Partition<2>> make_rank_partition<2>(const Params<2>&, std::string_view,

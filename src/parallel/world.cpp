@@ -16,7 +16,9 @@ bool active = false;
 // Set by the starters in every process they start: Open MPI's mpirun,
 // PMIx and PMI-2 based ones (Slurm's srun, MPICH's Hydra).
 bool launched_by_mpi_starter() {
-    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    static constexpr const char* names[] = {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK",
+                                            "PMI_SIZE"};
+    for (const char* name : names)
         if (std::getenv(name))
             return true;
     return false;

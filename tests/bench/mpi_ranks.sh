@@ -9,14 +9,14 @@
 #
 #   tests/bench/mpi_ranks.sh build/sphclip [SCENE] [DURATION] [REPEAT]
 #
-# Default scene: scenes/wave_tank_2d.json (wcsph, 2,960 particles) for 0.5 s,
+# Default scene: scenes/dam_break_water_3d.json (wcsph, 11,700 particles) for 0.05 s,
 # run with --no-png --no-mp4 so that only the simulation is timed.
 set -euo pipefail
 
 sphclip=$(readlink -f "${1:?usage: mpi_ranks.sh SPHCLIP [SCENE] [DURATION] [REPEAT]}")
 root=$(cd "$(dirname "$0")/../.." && pwd)
-scene=${2:-$root/scenes/wave_tank_2d.json}
-duration=${3:-0.5}
+scene=${2:-$root/scenes/dam_break_water_3d.json}
+duration=${3:-0.05}
 repeat=${4:-3}
 mpirun=${MPIRUN:-mpirun}
 work=$(mktemp -d /tmp/sphclip-mpi-bench.XXXXXX)

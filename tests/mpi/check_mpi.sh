@@ -157,7 +157,7 @@ check_interrupt() {
 
 check_refused() {
     code=0
-    mpi 2 run "$here/scenes/paddle_obstacle_2d.json" --out "$work/refused" --no-png --no-mp4 \
+    mpi 2 run "$here/scenes/tension_2d.json" --out "$work/refused" --no-png --no-mp4 \
         --set solver.name=dfsph --quiet > "$work/refused.log" 2>&1 || code=$?
     [ "$code" -eq 2 ] || {
         cat "$work/refused.log"

@@ -28,6 +28,10 @@ constexpr std::size_t max_cells_per_particle = 64;
 // After each rank's results in the gather: its owned + halo count and its
 // solver seconds, so the balance is measured without another message.
 constexpr std::size_t trailer = 2;
+// Halo cells per reach along an axis: the halo is the owned particles' cells
+// grown by this many cells, so it holds particles up to (1 + 1 / 3) reach
+// away rather than 2 reaches with cells as large as the reach.
+constexpr int halo_subdivision = 3;
 
 template <int D>
 class RankPartition final : public Partition<D> {
@@ -139,11 +143,12 @@ class RankPartition final : public Partition<D> {
         const Real reach =
             Real(hops_ + (whole_cells_ ? 1 : 0)) * (params.h * (1 + 1e-5) + 2 * move) * (1 + 1e-6);
         local_index_.clear();
+        const Real cell_size = reach / halo_subdivision;
         std::size_t cells = 1;
         std::array<std::size_t, D> dims{};
         everyone = everyone || !(reach > 0) || !std::isfinite(reach) || !(lo[0] <= hi[0]);
         for (int a = 0; a < D && !everyone; ++a) {
-            const Real extent = (hi[a] - lo[a]) / reach;
+            const Real extent = (hi[a] - lo[a]) / cell_size;
             everyone = !(extent < Real(max_cells_per_particle * (n + 64)));
             if (!everyone) {
                 dims[a] = std::size_t(extent) + 1;
@@ -161,30 +166,32 @@ class RankPartition final : public Partition<D> {
             for (int a = D - 1; a >= 0; --a) {
                 if (!std::isfinite(x[a]))
                     return false;
-                const Real u = (x[a] - lo[a]) / reach;
+                const Real u = (x[a] - lo[a]) / cell_size;
                 const std::size_t c = std::min(std::size_t(std::max(u, Real(0))), dims[a] - 1);
                 cell = cell * dims[a] + c;
             }
             return true;
         };
-        // Cells of an owned particle, then grown by one cell along each axis
-        // in turn: a particle within `reach` of an owned one is in a marked
-        // cell.
+        // Cells of an owned particle, then grown by halo_subdivision cells
+        // along each axis in turn: a particle within `reach` of an owned one
+        // is in a marked cell.
         near_.assign(cells, 0);
         for (std::size_t i = begin; i < end; ++i)
             if (std::size_t c; cell_of(state.position[i], c))
                 near_[c] = 1;
         std::size_t step = 1;
         for (int a = 0; a < D; ++a) {
-            grown_ = near_;
-            for (std::size_t c = 0; c < cells; ++c) {
-                const std::size_t along = c / step % dims[a];
-                if (along > 0)
-                    grown_[c] |= near_[c - step];
-                if (along + 1 < dims[a])
-                    grown_[c] |= near_[c + step];
+            for (int layer = 0; layer < halo_subdivision; ++layer) {
+                grown_ = near_;
+                for (std::size_t c = 0; c < cells; ++c) {
+                    const std::size_t along = c / step % dims[a];
+                    if (along > 0)
+                        grown_[c] |= near_[c - step];
+                    if (along + 1 < dims[a])
+                        grown_[c] |= near_[c + step];
+                }
+                near_.swap(grown_);
             }
-            near_.swap(grown_);
             step *= dims[a];
         }
         for (std::size_t i = 0; i < n; ++i) {

@@ -10,6 +10,8 @@
 #include "io/particle_export.hpp"
 #include "io/scene_setup.hpp"
 #include "io/stats_csv.hpp"
+#include "parallel/rank_partition.hpp"
+#include "parallel/world.hpp"
 #include "render/render_sink.hpp"
 #include "sph/surface.hpp"
 #include "sph/wall_clock.hpp"
@@ -150,13 +152,23 @@ class ClipRun {
         : scene_(scene), folder_(folder), options_(options), derived_(derive(scene)),
           sim_(make_simulation<D>(scene, derived_)),
           frames_(static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1),
-          progress_(progress_mode(options.progress, options.quiet, isatty(STDOUT_FILENO)),
+          progress_(progress_mode(options.progress, options.quiet || !parallel::leader(),
+                                  isatty(STDOUT_FILENO)),
                     options.progress_interval_s) {
-        add_sinks(std::move(gl_context));
-        // Only the fields some sink reads are computed for output and copied.
+        // Over MPI ranks, each step shared out (docs/mpi.md); rank 0 alone
+        // has sinks and writes run.json.
+        sim_.set_partition(parallel::make_rank_partition<D>(sim_.params(), sim_.solver().name(),
+                                                            sim_.effects(), scene.file));
+        if (leader_)
+            add_sinks(std::move(gl_context));
+        // Only the fields some sink reads are computed for output and copied
+        // (rank 0's sinks: every rank computes what rank 0 does).
         for (const auto& sink : sinks_)
             fields_ |= sink->fields();
+        fields_.pressure = parallel::leader_says(fields_.pressure);
         sim_.set_output_fields(fields_);
+        if (!leader_)
+            return;
         record_.path = folder_ / "run.json";
         record_.document = starting_document();
         record_.start(sim_.state().size());
@@ -227,6 +239,7 @@ class ClipRun {
               {"max_speed", sim_.params().watchdog.max_speed}}},
             {"particles", sim_.state().size()},
             {"threads", omp_get_max_threads()},
+            {"mpi", {{"ranks", parallel::size()}}},
             {"started_utc", utc_iso8601(started_)},
             {"build", build_json()},
             {"machine", machine_json()},
@@ -273,7 +286,10 @@ class ClipRun {
             // A frame is taken when simulation time crosses k / fps.
             if (!simulate_until(double(k) / scene_.fps))
                 return {RunStatus::interrupted,
-                        fmt::format("stopped by signal {}", StopSignals::received()), nullptr};
+                        StopSignals::received() != 0
+                            ? fmt::format("stopped by signal {}", StopSignals::received())
+                            : std::string("stopped by a signal to another MPI rank"),
+                        nullptr};
             take_snapshot(k);
             // No stats row or export ever holds inf or NaN: such a frame
             // ends the run as unstable before any of it is written.
@@ -293,9 +309,13 @@ class ClipRun {
     // signal asked to stop first (checked between steps).
     bool simulate_until(double time) {
         const auto start = Clock::now();
-        while (!sim_.reached(time) && StopSignals::received() == 0)
+        // Over MPI ranks the ranks decide together, between the same steps.
+        bool stop = false;
+        while (!sim_.reached(time) && !(stop = parallel::any_rank(StopSignals::received() != 0)))
             sim_.step_toward(time);
-        if (StopSignals::received() != 0)
+        if (!stop)
+            stop = parallel::any_rank(StopSignals::received() != 0);
+        if (stop)
             return false;
         sim_.update_fields();
         simulate_seconds_.push_back(seconds_since(start));
@@ -391,6 +411,16 @@ class ClipRun {
         const std::vector<StageRow> stages = record_timings(seconds);
         if (render_ && !render_->warnings().empty())
             record_.document["warnings"] = render_->warnings();
+        if (!leader_) {
+            // Rank 0 records and tells; a failure here ends the job (main()).
+            if (end.status == RunStatus::failed)
+                std::rethrow_exception(end.exception);
+            return end.status == RunStatus::completed  ? exit_success
+                   : end.status == RunStatus::unstable ? exit_unstable
+                                                       : exit_interrupted;
+        }
+        if (const Partition<D>* partition = sim_.partition())
+            record_.document["mpi"] = partition->report();
         if (render_ && !render_->poses().empty())
             record_.document["camera"] = record_cameras(*render_);
         std::string run_json_note;
@@ -620,6 +650,7 @@ class ClipRun {
 
     double wall() const { return seconds_since(start_); }
 
+    const bool leader_ = parallel::leader(); // rank 0, or the only process
     const Scene& scene_;
     const fs::path folder_;
     const RunOptions& options_;

@@ -11,6 +11,7 @@
 #include "cli/study_command.hpp"
 #include "cli/validate_command.hpp"
 #include "io/input_error.hpp"
+#include "parallel/world.hpp"
 #include "render/gl_context.hpp"
 
 #include <CLI/CLI.hpp>
@@ -58,6 +59,9 @@ void print_keys(bool markdown) {
 } // namespace
 
 int main(int argc, char** argv) {
+    // Under mpirun, MPI first (docs/mpi.md): its start-up installs signal
+    // handlers of its own, which ours then replace.
+    const sph::parallel::Session mpi(&argc, &argv);
     // Before anything else: a stop asked for during start-up is kept, and
     // the run it reaches ends as interrupted (exit 130).
     const sph::StopSignals stop_signals;
@@ -67,7 +71,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
 
     sph::RunCommandLine run;
-    sph::add_run_command(app, run);
+    auto* run_cmd = sph::add_run_command(app, run);
 
     bool markdown = false;
     auto* keys_cmd =
@@ -97,6 +101,10 @@ int main(int argc, char** argv) {
     }
 
     try {
+        if (sph::parallel::size() > 1 && !*run_cmd)
+            throw sph::InputError("command line", "",
+                                  "only `sphclip run` runs over MPI ranks; start other commands "
+                                  "without mpirun");
         if (*keys_cmd) {
             print_keys(markdown);
             return sph::exit_success;
@@ -121,12 +129,14 @@ int main(int argc, char** argv) {
     } catch (const sph::GlContextError& e) {
         sph::say(stderr, "sphclip: error: {}\nsphclip: (--no-png --no-mp4 runs need no OpenGL)\n",
                  e.what());
-        return sph::exit_no_gl_context;
+        return sph::parallel::end_job(sph::exit_no_gl_context);
     } catch (const sph::InputError& e) {
-        sph::say(stderr, "sphclip: error: {}\n", e.what());
-        return sph::exit_bad_input;
+        if (sph::parallel::leader())
+            sph::say(stderr, "sphclip: error: {}\n", e.what());
+        return sph::parallel::end_job(sph::exit_bad_input);
     } catch (const std::exception& e) {
         sph::say(stderr, "sphclip: error: {}\n", sph::printable(e.what()));
-        return sph::exit_failure;
+        // The other ranks may wait on this one in their next collective call.
+        return sph::parallel::end_job(sph::exit_failure);
     }
 }

@@ -27,8 +27,8 @@ struct OutputName {
     bool folder;
 };
 constexpr OutputName output_names[] = {
-    {"frames", true},    {"particles", true}, {"stats.csv", false},
-    {"run.json", false}, {"clip.mp4", false}, {"particles.pvd", false},
+    {"frames", true},    {"particles", true},      {"stats.csv", false},  {"run.json", false},
+    {"clip.mp4", false}, {"particles.pvd", false}, {"camera.csv", false},
 };
 
 [[noreturn]] void refuse(const fs::path& folder, const std::string& problem) {

@@ -10,6 +10,7 @@
 #include "cli/stop_signals.hpp"
 #include "io/files.hpp"
 #include "io/input_error.hpp"
+#include "parallel/world.hpp"
 #include "render/fonts.hpp"
 #include "render/gl_context.hpp"
 #include "render/render_settings.hpp"
@@ -208,6 +209,13 @@ int run_command(const RunOptions& given) {
     const fs::path folder = recorded      ? rerun_folder(options, scene)
                             : options.out ? *options.out
                                           : output_folder(scene);
+    // Over MPI ranks (docs/mpi.md) rank 0 writes every output; the others
+    // step with it and write nothing, not even the folder.
+    if (!parallel::leader()) {
+        if (options.threads > 0)
+            omp_set_num_threads(options.threads);
+        return run_clip(scene, folder, options, nullptr);
+    }
     if (options.rerun_of && !options.quiet) {
         say("sphclip: re-running {} (sphclip {}, commit {}, started {})\n", options.scene->string(),
             options.rerun_of->sphclip_version, options.rerun_of->git_commit,
@@ -240,7 +248,7 @@ int run_command(const RunOptions& given) {
             "sphclip: stopped by signal {} before the run started; nothing "
             "written\n",
             signal);
-        return exit_interrupted;
+        return parallel::end_job(exit_interrupted);
     }
     // Held until the run ends: no other run writes into the folder meanwhile.
     const OutputFolder output(folder);

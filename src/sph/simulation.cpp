@@ -84,7 +84,8 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
         ctx.start_time = time_ + Real(k) * dt;
         // The paddles where they are when the step starts.
         ctx.place_boundaries(ctx.start_time);
-        const StepReport report = solver_->step(params_, dt, state_, ctx);
+        const StepReport report = partition_ ? partition_->step(*solver_, params_, dt, state_, ctx)
+                                             : solver_->step(params_, dt, state_, ctx);
         ++steps_;
         ++counters_.steps;
         counters_.dt_min = std::min(counters_.dt_min, dt);

@@ -6,6 +6,7 @@
 // exactly.
 
 #include "sph/boundaries/boundary.hpp"
+#include "sph/partition.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/solvers/solver.hpp"
 #include "sph/sources/source.hpp"
@@ -51,6 +52,11 @@ class Simulation {
     Real next_dt() const;
     // Counters since the last call, then reset.
     StepCounters take_counters();
+    // Steps shared out over processes (sph/partition.hpp); null: all here.
+    void set_partition(std::unique_ptr<Partition<D>> partition) {
+        partition_ = std::move(partition);
+    }
+    const Partition<D>* partition() const { return partition_.get(); }
 
     const Params<D>& params() const { return params_; }
     const State<D>& state() const { return state_; }
@@ -115,6 +121,7 @@ class Simulation {
     // order (hash, all_pairs), made on first use; scratch for the permutation.
     std::unique_ptr<NeighbourSearch<D>> sorter_;
     PermuteScratch<D> permute_scratch_;
+    std::unique_ptr<Partition<D>> partition_;
     int steps_since_reorder_ = 0;
     Real time_ = 0;
     std::uint64_t steps_ = 0;

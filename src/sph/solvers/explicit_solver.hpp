@@ -49,6 +49,15 @@ class ExplicitSolver : public Solver<D> {
         return report;
     }
 
+    // Whether the state's accelerations are those of its positions and
+    // velocities, as after a Verlet step of `size` particles: a partition
+    // (sph/partition.hpp) steps a different subset of particles each step,
+    // so it says what a step of the whole state would have found.
+    void set_accelerations_current(bool current, std::size_t size) {
+        accelerations_current_ = current;
+        accelerations_for_ = size;
+    }
+
   protected:
     // state.acceleration = every force of the model at the current state.
     virtual void compute_accelerations(const Params<D>& params, State<D>& state,

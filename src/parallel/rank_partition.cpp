@@ -1,0 +1,390 @@
+#include "parallel/rank_partition.hpp"
+
+#include "io/input_error.hpp"
+#include "parallel/world.hpp"
+#include "sph/effects/surface_tension.hpp"
+#include "sph/solvers/explicit_solver.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <mpi.h>
+#include <omp.h>
+#include <stdexcept>
+#include <vector>
+
+namespace sph::parallel {
+
+namespace {
+
+// Coarse cells at most per particle for the halo's grid; a box sparser
+// than that (a far stray particle) puts every particle in the halo, which
+// is exact, only slower.
+constexpr std::size_t max_cells_per_particle = 64;
+// After each rank's results in the gather: its owned + halo count and its
+// solver seconds, so the balance is measured without another message.
+constexpr std::size_t trailer = 2;
+// Halo cells per reach along an axis: the halo is the owned particles' cells
+// grown by this many cells, so it holds particles up to (1 + 1 / 3) reach
+// away rather than 2 reaches with cells as large as the reach.
+constexpr int halo_subdivision = 3;
+
+template <int D>
+class RankPartition final : public Partition<D> {
+  public:
+    RankPartition(int hops, bool whole_cells)
+        : hops_(hops), whole_cells_(whole_cells), rank_(rank()), ranks_(size()) {
+        first_.resize(std::size_t(ranks_) + 1);
+        counts_.resize(std::size_t(ranks_));
+        displacements_.resize(std::size_t(ranks_));
+        last_local_.assign(std::size_t(ranks_), 0);
+        last_owned_.assign(std::size_t(ranks_), 0);
+    }
+
+    StepReport step(Solver<D>& solver, const Params<D>& params, Real dt, State<D>& state,
+                    StepContext<D>& context) override {
+        const std::size_t n = state.size();
+        cut(n);
+        // The accelerations a Verlet step reuses are the whole state's: as
+        // current as on one rank, whatever subset this step holds. When they
+        // are not (the first step, new particles), the step computes them
+        // before it drifts by them: nothing bounds that drift beforehand, so
+        // this step holds every particle.
+        const bool current = stepped_ && n == stepped_size_;
+        select_local(params, dt, state, params.integrator == Integrator::verlet && !current);
+        copy_local(state);
+        if (auto* explicit_solver = dynamic_cast<ExplicitSolver<D>*>(&solver))
+            explicit_solver->set_accelerations_current(current, local_.size());
+        const auto start = std::chrono::steady_clock::now();
+        // A rank that owns nothing (fewer particles than ranks) steps nothing.
+        StepReport report = first_[std::size_t(rank_) + 1] > first_[std::size_t(rank_)]
+                                ? solver.step(params, dt, local_, context)
+                                : StepReport{};
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stepped_ = true;
+        stepped_size_ = n;
+        share_results(state, seconds);
+        // Each rank's pushes, halo included: a particle near a rank's edge is
+        // pushed on every rank that holds it (docs/mpi.md).
+        std::uint64_t pushes = 0;
+        MPI_Allreduce(&report.obstacle_pushes, &pushes, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+        report.obstacle_pushes = pushes;
+        return report;
+    }
+
+    nlohmann::json report() const override {
+        const double steps = std::max<double>(double(steps_), 1);
+        return {
+            {"ranks", ranks_},
+            {"threads_per_rank", omp_get_max_threads()},
+            {"decomposition",
+             "contiguous ranges of the sorted grid's cell order (Morton curve), cut by particle "
+             "count every step; whole state on every rank, owned results all-gathered"},
+            {"halo_support_radii", hops_},
+            {"steps", steps_},
+            {"owned_per_rank", last_owned_},
+            {"owned_and_halo_per_rank", last_local_},
+            {"imbalance",
+             {{"particles_mean", work_imbalance_sum_ / steps},
+              {"particles_max", work_imbalance_max_},
+              {"seconds_mean", time_imbalance_sum_ / steps},
+              {"seconds_max", time_imbalance_max_}}},
+            {"halo_particles_per_step", double(halo_sum_) / steps},
+            {"gather_bytes_received_per_step", double(received_bytes_) / steps},
+            {"gather_bytes_received", received_bytes_},
+            {"migration_bytes_per_step", 0},
+            {"migrations", migrations_},
+            {"most_ranks_visited", most_visited_},
+            {"steps_with_an_empty_rank", steps_with_empty_rank_},
+        };
+    }
+
+  private:
+    static constexpr std::size_t stride = 3 * D + 2; // x, v, a, rho, p
+
+    // Rank r owns [first_[r], first_[r + 1]).
+    void cut(std::size_t n) {
+        for (int r = 0; r <= ranks_; ++r)
+            first_[std::size_t(r)] =
+                std::size_t(std::uint64_t(n) * std::uint64_t(r) / std::uint64_t(ranks_));
+    }
+
+    // local_index_: the owned particles and those within the halo's reach
+    // of one, by ascending memory position (so the owned ones are one run).
+    void select_local(const Params<D>& params, Real dt, const State<D>& state, bool everyone) {
+        const std::size_t n = state.size();
+        const std::size_t begin = first_[std::size_t(rank_)], end = first_[std::size_t(rank_) + 1];
+        // How far a step can move a particle (Verlet: half-kick, then drift)
+        // widens every link of the chain, at both ends.
+        Real v_max = 0, a_max = 0;
+        Vec<D> lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec<D>& x = state.position[i];
+            bool finite = true;
+            for (int a = 0; a < D; ++a)
+                finite = finite && std::isfinite(x[a]);
+            if (!finite)
+                continue;
+            lo = glm::min(lo, x);
+            hi = glm::max(hi, x);
+            v_max = std::max(v_max, std::sqrt(squared_length<D>(state.velocity[i])));
+            a_max = std::max(a_max, std::sqrt(squared_length<D>(state.acceleration[i])));
+        }
+        const Real move = dt * v_max + dt * dt * a_max;
+        // The float passes (solver.precision single) sum over every particle
+        // of the 3^D cells around a particle's cell, a lane per candidate:
+        // the same bits need the same candidates, every particle of the
+        // cells within `hops` cells of an owned one's, so one cell further.
+        const Real reach =
+            Real(hops_ + (whole_cells_ ? 1 : 0)) * (params.h * (1 + 1e-5) + 2 * move) * (1 + 1e-6);
+        local_index_.clear();
+        const Real cell_size = reach / halo_subdivision;
+        std::size_t cells = 1;
+        std::array<std::size_t, D> dims{};
+        everyone = everyone || !(reach > 0) || !std::isfinite(reach) || !(lo[0] <= hi[0]);
+        for (int a = 0; a < D && !everyone; ++a) {
+            const Real extent = (hi[a] - lo[a]) / cell_size;
+            everyone = !(extent < Real(max_cells_per_particle * (n + 64)));
+            if (!everyone) {
+                dims[a] = std::size_t(extent) + 1;
+                cells *= dims[a];
+                everyone = cells > max_cells_per_particle * (n + 64);
+            }
+        }
+        if (everyone) {
+            for (std::size_t i = 0; i < n; ++i)
+                local_index_.push_back(static_cast<std::uint32_t>(i));
+            return;
+        }
+        auto cell_of = [&](const Vec<D>& x, std::size_t& cell) {
+            cell = 0;
+            for (int a = D - 1; a >= 0; --a) {
+                if (!std::isfinite(x[a]))
+                    return false;
+                const Real u = (x[a] - lo[a]) / cell_size;
+                const std::size_t c = std::min(std::size_t(std::max(u, Real(0))), dims[a] - 1);
+                cell = cell * dims[a] + c;
+            }
+            return true;
+        };
+        // Cells of an owned particle, then grown by halo_subdivision cells
+        // along each axis in turn: a particle within `reach` of an owned one
+        // is in a marked cell.
+        near_.assign(cells, 0);
+        for (std::size_t i = begin; i < end; ++i)
+            if (std::size_t c; cell_of(state.position[i], c))
+                near_[c] = 1;
+        std::size_t step = 1;
+        for (int a = 0; a < D; ++a) {
+            for (int layer = 0; layer < halo_subdivision; ++layer) {
+                grown_ = near_;
+                for (std::size_t c = 0; c < cells; ++c) {
+                    const std::size_t along = c / step % dims[a];
+                    if (along > 0)
+                        grown_[c] |= near_[c - step];
+                    if (along + 1 < dims[a])
+                        grown_[c] |= near_[c + step];
+                }
+                near_.swap(grown_);
+            }
+            step *= dims[a];
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            std::size_t c = 0;
+            if ((i >= begin && i < end) || (cell_of(state.position[i], c) && near_[c]))
+                local_index_.push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+
+    void copy_local(const State<D>& state) {
+        const std::size_t m = local_index_.size();
+        local_.resize(m);
+        const std::uint32_t* index = local_index_.data();
+#pragma omp parallel for schedule(static)
+        for (std::size_t k = 0; k < m; ++k) {
+            const std::uint32_t i = index[k];
+            local_.position[k] = state.position[i];
+            local_.velocity[k] = state.velocity[i];
+            local_.acceleration[k] = state.acceleration[i];
+            local_.density[k] = state.density[i];
+            local_.pressure[k] = state.pressure[i];
+            local_.id[k] = state.id[i];
+        }
+    }
+
+    // The owned particles' new state from every rank, into `state`.
+    void share_results(State<D>& state, double seconds) {
+        const std::size_t n = state.size();
+        const std::size_t begin = first_[std::size_t(rank_)], end = first_[std::size_t(rank_) + 1];
+        const std::size_t owned = end - begin;
+        if ((n * stride + std::size_t(ranks_) * trailer) >
+            std::size_t(std::numeric_limits<int>::max()))
+            throw std::length_error("MPI ranks: more particles than one gather can count");
+        // Where the owned run starts among this rank's particles.
+        const std::size_t offset = std::size_t(
+            std::lower_bound(local_index_.begin(), local_index_.end(), std::uint32_t(begin)) -
+            local_index_.begin());
+        send_.resize(owned * stride + trailer);
+#pragma omp parallel for schedule(static)
+        for (std::size_t k = 0; k < owned; ++k) {
+            Real* out = send_.data() + k * stride;
+            const std::size_t j = offset + k;
+            for (int a = 0; a < D; ++a) {
+                out[a] = local_.position[j][a];
+                out[D + a] = local_.velocity[j][a];
+                out[2 * D + a] = local_.acceleration[j][a];
+            }
+            out[3 * D] = local_.density[j];
+            out[3 * D + 1] = local_.pressure[j];
+        }
+        send_[owned * stride] = double(local_.size());
+        send_[owned * stride + 1] = seconds;
+        for (int r = 0; r < ranks_; ++r) {
+            const std::size_t count =
+                (first_[std::size_t(r) + 1] - first_[std::size_t(r)]) * stride + trailer;
+            counts_[std::size_t(r)] = int(count);
+            displacements_[std::size_t(r)] =
+                int(first_[std::size_t(r)] * stride + std::size_t(r) * trailer);
+        }
+        receive_.resize(n * stride + std::size_t(ranks_) * trailer);
+        MPI_Request request;
+        MPI_Iallgatherv(send_.data(), int(send_.size()), MPI_DOUBLE, receive_.data(),
+                        counts_.data(), displacements_.data(), MPI_DOUBLE, MPI_COMM_WORLD,
+                        &request);
+        MPI_Wait(&request, MPI_STATUS_IGNORE);
+        for (int r = 0; r < ranks_; ++r) {
+            const std::size_t from = first_[std::size_t(r)], to = first_[std::size_t(r) + 1];
+            const Real* block = receive_.data() + displacements_[std::size_t(r)];
+#pragma omp parallel for schedule(static)
+            for (std::size_t i = from; i < to; ++i) {
+                const Real* in = block + (i - from) * stride;
+                for (int a = 0; a < D; ++a) {
+                    state.position[i][a] = in[a];
+                    state.velocity[i][a] = in[D + a];
+                    state.acceleration[i][a] = in[2 * D + a];
+                }
+                state.density[i] = in[3 * D];
+                state.pressure[i] = in[3 * D + 1];
+            }
+            const Real* tail = block + (to - from) * stride;
+            last_owned_[std::size_t(r)] = to - from;
+            last_local_[std::size_t(r)] = std::uint64_t(tail[0]);
+            seconds_[std::size_t(r)] = tail[1];
+        }
+        record_balance(n, owned);
+        if (rank_ == 0)
+            record_owners(state);
+    }
+
+    // Which rank owns each particle now: the particles that changed rank
+    // since the last step (where the cut or a reorder moved them) and the
+    // ranks each has been owned by. Rank 0 reports them.
+    void record_owners(const State<D>& state) {
+        bool empty = false;
+        for (int r = 0; r < ranks_; ++r) {
+            empty = empty || first_[std::size_t(r) + 1] == first_[std::size_t(r)];
+            for (std::size_t i = first_[std::size_t(r)]; i < first_[std::size_t(r) + 1]; ++i) {
+                const std::uint32_t id = state.id[i];
+                if (id >= owner_.size()) {
+                    owner_.resize(std::size_t(id) + 1, -1);
+                    visited_.resize(std::size_t(id) + 1, 0);
+                }
+                if (owner_[id] >= 0 && owner_[id] != r)
+                    ++migrations_;
+                owner_[id] = static_cast<std::int16_t>(r);
+                if (r < 64) {
+                    visited_[id] |= std::uint64_t(1) << r;
+                    most_visited_ = std::max(most_visited_, std::popcount(visited_[id]));
+                }
+            }
+        }
+        steps_with_empty_rank_ += empty;
+    }
+
+    void record_balance(std::size_t n, std::size_t owned) {
+        ++steps_;
+        std::uint64_t local_total = 0, local_max = 0;
+        double seconds_total = 0, seconds_max = 0;
+        for (int r = 0; r < ranks_; ++r) {
+            local_total += last_local_[std::size_t(r)];
+            local_max = std::max(local_max, last_local_[std::size_t(r)]);
+            seconds_total += seconds_[std::size_t(r)];
+            seconds_max = std::max(seconds_max, seconds_[std::size_t(r)]);
+        }
+        const double work = local_total > 0 ? double(local_max) * ranks_ / double(local_total) : 1;
+        const double time = seconds_total > 0 ? seconds_max * ranks_ / seconds_total : 1;
+        work_imbalance_sum_ += work;
+        work_imbalance_max_ = std::max(work_imbalance_max_, work);
+        time_imbalance_sum_ += time;
+        time_imbalance_max_ = std::max(time_imbalance_max_, time);
+        halo_sum_ += local_.size() - owned;
+        received_bytes_ += (n - owned) * stride * sizeof(Real);
+    }
+
+    const int hops_;
+    const bool whole_cells_;
+    const int rank_, ranks_;
+    std::vector<std::size_t> first_;
+    std::vector<std::uint32_t> local_index_;
+    std::vector<std::uint8_t> near_, grown_;
+    State<D> local_;
+    std::vector<Real> send_, receive_;
+    std::vector<int> counts_, displacements_;
+    bool stepped_ = false;
+    std::size_t stepped_size_ = 0;
+    // Balance and traffic, for run.json.
+    std::vector<std::uint64_t> last_local_, last_owned_;
+    std::vector<double> seconds_ = std::vector<double>(std::size_t(ranks_), 0.0);
+    std::uint64_t steps_ = 0, halo_sum_ = 0, received_bytes_ = 0;
+    double work_imbalance_sum_ = 0, work_imbalance_max_ = 0;
+    double time_imbalance_sum_ = 0, time_imbalance_max_ = 0;
+    std::vector<std::int16_t> owner_; // by particle id; -1: not seen yet
+    std::vector<std::uint64_t> visited_;
+    std::uint64_t migrations_ = 0, steps_with_empty_rank_ = 0;
+    int most_visited_ = 0;
+};
+
+} // namespace
+
+template <int D>
+std::unique_ptr<Partition<D>>
+make_rank_partition(const Params<D>& params, std::string_view solver_name,
+                    const EffectList<D>& effects, const std::string& scene_file) {
+    if (size() <= 1)
+        return nullptr;
+    // DFSPH's solves iterate neighbour sums to a tolerance on the mean
+    // density error: a halo exchange per iteration, not per step.
+    if (solver_name == "dfsph")
+        throw InputError(scene_file, "solver.name",
+                         "dfsph does not run over MPI ranks yet (its pressure solves need a halo "
+                         "exchange per iteration); use wcsph or seed, or run on one rank");
+    // The float passes gather a cell's neighbourhood in the order of the
+    // grid over the fluid and wall particles: the same grid on every rank
+    // only when the domain's wall particles bound it, as they bound the
+    // fluid.
+    const bool single = params.precision == Precision::single;
+    if (single && params.walls != WallModel::particles)
+        throw InputError(scene_file, "solver.walls",
+                         "single precision over MPI ranks needs wall particles (solver.walls "
+                         "particles): with reflecting walls each rank's grid would differ; use "
+                         "solver.precision double, or run on one rank");
+    int hops = 2; // density, then the forces that read the neighbours' densities
+    for (const auto& effect : effects)
+        if (dynamic_cast<const SurfaceTension<D>*>(effect.get()))
+            hops = 3; // normals from densities, then forces from normals
+    return std::make_unique<RankPartition<D>>(hops, single);
+}
+
+template std::unique_ptr<Partition<2>> make_rank_partition<2>(const Params<2>&, std::string_view,
+                                                              const EffectList<2>&,
+                                                              const std::string&);
+template std::unique_ptr<Partition<3>> make_rank_partition<3>(const Params<3>&, std::string_view,
+                                                              const EffectList<3>&,
+                                                              const std::string&);
+
+} // namespace sph::parallel

@@ -20,6 +20,7 @@ const KeyTable<Scene::Watchdog>& watchdog_keys();
 // render_keys.cpp
 const KeyTable<Scene::Render>& render_keys();
 const KeyTable<Scene::Render::Camera>& camera_keys();
+const KeyTable<Scene::Render::Surface>& surface_keys();
 // output_keys.cpp
 const KeyTable<Scene::Output>& output_keys();
 

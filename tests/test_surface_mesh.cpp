@@ -302,7 +302,7 @@ TEST_CASE("bad surface keys exit 2 naming the key, and write nothing", "[surface
     }
 }
 
-TEST_CASE("--export surface writes a .ply per frame (and a .vdb in 3D)", "[surface][cli]") {
+TEST_CASE("the surface export writes a .ply per frame (and a .vdb in 3D)", "[surface][cli]") {
     test::TempFolder tmp;
     const fs::path out = tmp / "out";
     const std::string scene =

@@ -33,9 +33,9 @@ def check(condition, what):
         print("FAILED:", what)
 
 
-def run(scene, out, extra):
+def run(scene, out, extra, duration="0.04"):
     args = [exe, "run", os.path.join(source, "scenes", scene), "--out", out, "--quiet",
-            "--no-png", "--no-mp4", "--threads", "1", "--duration", "0.04", "--fps", "50",
+            "--no-png", "--no-mp4", "--threads", "1", "--duration", duration, "--fps", "50",
             "--export", "surface", "--export", "csv"]
     return subprocess.run(args + extra, env=dict(os.environ, OMP_WAIT_POLICY="passive"),
                           capture_output=True, text=True)
@@ -103,8 +103,8 @@ def particle_speeds(path, dim):
 
 cases = [("dam_break_2d.json", 2, [0, 0], [0.4, 0.25], ["--set", "fluid.spacing=0.004"])]
 with tempfile.TemporaryDirectory() as tmp:
-    probe = run("dam_break_3d.json", os.path.join(tmp, "probe"), ["--duration", "0.001",
-                                                                  "--set", "fluid.spacing=0.02"])
+    probe = run("dam_break_3d.json", os.path.join(tmp, "probe"), ["--set", "fluid.spacing=0.02"],
+                duration="0.001")
     if probe.returncode == 0:
         cases.append(("dam_break_3d.json", 3, [0, 0, 0], [0.4, 0.25, 0.1],
                       ["--set", "fluid.spacing=0.008"]))

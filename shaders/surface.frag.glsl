@@ -37,7 +37,7 @@ void main() {
     // The reflected ray in world space (y up): a dark floor colour below the
     // horizon, a pale sky above.
     vec3 reflected = transpose(mat3(u_view)) * reflect(-to_eye, n);
-    vec3 sky = mix(vec3(0.12, 0.13, 0.16), vec3(0.62, 0.70, 0.80),
+    vec3 sky = mix(vec3(0.20, 0.22, 0.26), vec3(0.62, 0.70, 0.80),
                    smoothstep(-0.2, 0.6, reflected.y));
     vec3 body = base * (0.35 + 0.65 * diffuse);
     f_colour = vec4(mix(body, sky, fresnel) + vec3(0.45) * specular, 1.0);

@@ -112,6 +112,7 @@ int main(int argc, char** argv) {
     bool tiny = false;
     std::string csv_path, png_folder, counts_arg, backends_arg = "egl,osmesa";
     int repeats = 3;
+    SurfaceSettings surface;
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
         if (arg == "--tiny")
@@ -124,12 +125,16 @@ int main(int argc, char** argv) {
             counts_arg = argv[++k];
         else if (arg == "--backends" && k + 1 < argc)
             backends_arg = argv[++k];
+        else if (arg == "--smoothing" && k + 1 < argc)
+            surface.smoothing = std::stoi(argv[++k]);
+        else if (arg == "--voxel" && k + 1 < argc)
+            surface.voxel = std::stod(argv[++k]);
         else if (arg == "--repeats" && k + 1 < argc)
             repeats = std::max(1, std::stoi(argv[++k]));
         else {
             fmt::print(stderr,
                        "usage: {} [--tiny] [--counts N,N] [--backends egl,osmesa] [--repeats N] "
-                       "[--csv FILE] [--png FOLDER]\n",
+                       "[--smoothing N] [--voxel V] [--csv FILE] [--png FOLDER]\n",
                        argv[0]);
             return 2;
         }
@@ -173,7 +178,8 @@ int main(int argc, char** argv) {
         note(fmt::format("{} cores (nproc), {}", std::thread::hardware_concurrency(),
                          first_line_with("/proc/cpuinfo", "model name")));
         note(fmt::format("load average (1, 5, 15 min) at the start: {}", load_average()));
-        note("render.surface defaults: voxel 0.5, radius 1.0, smoothing 2 (x spacing)");
+        note(fmt::format("render.surface: voxel {}, radius {} (x spacing), smoothing {}",
+                         surface.voxel, surface.radius, surface.smoothing));
     }
     emit("backend,particles,width,height,vertices,triangles,reconstruct_ms,colour_ms,"
          "draw_ms,readback_ms,frame_ms,peak_rss_mib");
@@ -189,6 +195,7 @@ int main(int argc, char** argv) {
                 r.height = height;
                 r.dimension = 3;
                 r.style = "surface";
+                r.surface = surface;
                 r.spacing = spacing;
                 r.radius = 0.5 * spacing;
                 r.range = {0, 2};

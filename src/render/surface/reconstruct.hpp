@@ -3,10 +3,10 @@
 // particle rasterised as a sphere of radius r into a narrow-band level set
 // (openvdb::tools::ParticlesToLevelSet, the union of the spheres: Zhu and
 // Bridson 2005, "Animating sand as a fluid", sec. 4, in its simplest form),
-// smoothed by Gaussian passes, eroded by r - spacing / 2 so that the surface
-// lies where the drawn spheres' would (dilate, smooth, erode: the gaps between
-// particles closed, the bumps of single spheres gone), then meshed at its
-// zero crossing (openvdb::tools::volumeToMesh). 2D (marching_squares.cpp):
+// smoothed by Gaussian passes, then meshed (openvdb::tools::volumeToMesh) at
+// the level -(r - spacing / 2), an erosion by that much, so that the surface
+// lies where the drawn spheres' would (dilate, smooth, erode: the gaps
+// between particles closed, the bumps of single spheres gone). 2D (marching_squares.cpp):
 // a kernel sum on a grid, its half-full level traced by marching squares and
 // filled. The colour field is then carried from the particles to the
 // vertices (vertex_colours.hpp).

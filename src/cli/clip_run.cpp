@@ -10,6 +10,7 @@
 #include "io/particle_export.hpp"
 #include "io/scene_setup.hpp"
 #include "io/stats_csv.hpp"
+#include "io/surface_export.hpp"
 #include "parallel/rank_partition.hpp"
 #include "parallel/world.hpp"
 #include "render/render_sink.hpp"
@@ -208,6 +209,11 @@ class ClipRun {
                 EncodeThread::worker);
         sinks_.push_back(std::make_unique<StatsCsv>(folder_ / "stats.csv"));
         for (const auto& format : options_.exports) {
+            if (format == "surface") {
+                sinks_.push_back(
+                    std::make_unique<SurfaceExport>(folder_, make_render_settings(scene_)));
+                continue;
+            }
             fs::create_directories(folder_ / "particles");
             if (format == "csv")
                 sinks_.push_back(std::make_unique<ParticleCsv>(folder_));
@@ -501,9 +507,11 @@ class ClipRun {
         // Counted, not inferred: the PNGs and the video are written on
         // worker threads, which lag the frame loop.
         kept.push_back(fmt::format("stats.csv ({} rows)", count_lines(folder_ / "stats.csv") - 1));
-        if (!options_.exports.empty())
+        if (fs::exists(folder_ / "particles"))
             kept.push_back(
                 fmt::format("particles/ ({} files)", count_files(folder_ / "particles")));
+        if (fs::exists(folder_ / "surface"))
+            kept.push_back(fmt::format("surface/ ({} files)", count_files(folder_ / "surface")));
         if (render_ && options_.png)
             kept.push_back(fmt::format("frames/ ({} PNGs)", count_files(folder_ / "frames")));
         if (render_ && options_.mp4) {

@@ -28,7 +28,7 @@ struct OutputName {
 };
 constexpr OutputName output_names[] = {
     {"frames", true},    {"particles", true},      {"stats.csv", false},  {"run.json", false},
-    {"clip.mp4", false}, {"particles.pvd", false}, {"camera.csv", false},
+    {"clip.mp4", false}, {"particles.pvd", false}, {"camera.csv", false}, {"surface", true},
 };
 
 [[noreturn]] void refuse(const fs::path& folder, const std::string& problem) {
@@ -60,15 +60,16 @@ bool written_by_sphclip(const fs::path& run_json) {
     }
 }
 
-// A run's own files in frames/ or particles/: frame_NNNNN.png|csv|vtp and
-// their temporaries.
+// A run's own files in frames/, particles/ or surface/:
+// frame_NNNNN.png|csv|vtp|ply|vdb and their temporaries.
 bool is_frame_file(const std::string& name) {
     if (!name.starts_with("frame_"))
         return false;
     std::string_view rest(name);
     if (rest.ends_with(".partial"))
         rest.remove_suffix(8);
-    return rest.ends_with(".png") || rest.ends_with(".csv") || rest.ends_with(".vtp");
+    return rest.ends_with(".png") || rest.ends_with(".csv") || rest.ends_with(".vtp") ||
+           rest.ends_with(".ply") || rest.ends_with(".vdb");
 }
 
 } // namespace

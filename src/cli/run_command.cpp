@@ -14,6 +14,7 @@
 #include "render/fonts.hpp"
 #include "render/gl_context.hpp"
 #include "render/render_settings.hpp"
+#include "render/surface/reconstruct.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -157,8 +158,9 @@ CLI::App* add_run_command(CLI::App& app, RunCommandLine& line) {
     cmd->add_option("--fps", line.fps, "Frames per second (same as --set fps=N)")
         ->check(positive_finite_number());
     cmd->add_option("--export", run.exports,
-                    "Particle data per frame: csv, vtk (binary, compressed) or vtk-ascii")
-        ->check(CLI::IsMember({"csv", "vtk", "vtk-ascii"}))
+                    "Data per frame: particles as csv, vtk (binary, compressed) or vtk-ascii; "
+                    "surface: the fluid's surface mesh (.ply) and 3D level set (.vdb)")
+        ->check(CLI::IsMember({"csv", "vtk", "vtk-ascii", "surface"}))
         ->allow_extra_args(false);
     cmd->add_flag("--no-png", line.no_png, "Write no PNG frames");
     cmd->add_flag("--no-mp4", line.no_mp4, "Write no MP4 video");
@@ -206,6 +208,12 @@ int run_command(const RunOptions& given) {
         options.scene_file_absolute = fs::absolute(*options.scene).lexically_normal().string();
     if (options.fast_preview)
         make_fast_preview(scene);
+    if (scene.dimension == 3 && !surface_3d_available() &&
+        std::find(options.exports.begin(), options.exports.end(), "surface") !=
+            options.exports.end())
+        throw InputError("command line", "--export",
+                         "surface in 3D needs OpenVDB, and this sphclip was built without it "
+                         "(install libopenvdb-dev and configure with -DSPHCLIP_OPENVDB=ON)");
     const fs::path folder = recorded      ? rerun_folder(options, scene)
                             : options.out ? *options.out
                                           : output_folder(scene);

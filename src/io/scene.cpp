@@ -276,6 +276,31 @@ void check_render_range(const FieldReader& r, const Scene& s) {
                                            (*range)[0], (*range)[1]));
 }
 
+// render.surface's lengths in their documented ranges (the voxel sets the
+// level set's memory, ~ 1 / voxel^3), and a 3D surface only where this build
+// has OpenVDB (SPHCLIP_HAVE_OPENVDB, CMake option SPHCLIP_OPENVDB).
+void check_render_surface(const FieldReader& r, const Scene& s) {
+    const Scene::Render::Surface& f = s.render.surface;
+    if (!(f.voxel >= 0.1 && f.voxel <= 2))
+        r.fail("render.surface.voxel",
+               fmt::format("must be 0.1 to 2 particle spacings, got {}", f.voxel));
+    if (!(f.radius >= 0.5 && f.radius <= 4))
+        r.fail("render.surface.radius",
+               fmt::format("must be 0.5 to 4 particle spacings, got {}", f.radius));
+    if (s.render.style != "surface" || s.dimension != 3)
+        return;
+    // OpenVDB's rasteriser drops spheres under 1.5 voxels: nothing would show.
+    if (f.radius < 1.5 * f.voxel)
+        r.fail("render.surface.radius",
+               fmt::format("must be at least 1.5 voxels (render.surface.voxel = {}), got {}",
+                           f.voxel, f.radius));
+#ifndef SPHCLIP_HAVE_OPENVDB
+    r.fail("render.style", "surface in 3D needs OpenVDB, and this sphclip was built without it "
+                           "(install libopenvdb-dev and configure with -DSPHCLIP_OPENVDB=ON); "
+                           "2D scenes and render.style = spheres work without it");
+#endif
+}
+
 // output.name stays inside out/, and run.json records it: UTF-8 or a type_error.
 void check_output_name(const FieldReader& r, const Scene& s) {
     if (!s.output.name)
@@ -591,6 +616,8 @@ Scene read_fields(const json& root, const std::string& file, std::set<std::strin
     read_keys(r, "render", render_keys(), d.render, s.render, dim);
     check_render_range(r, s);
     read_camera(r, s);
+    read_keys(r, "render.surface", surface_keys(), d.render.surface, s.render.surface, dim);
+    check_render_surface(r, s);
     read_keys(r, "output", output_keys(), d.output, s.output, dim);
     check_output_name(r, s);
     r.reject_unknown_keys();
@@ -894,6 +921,7 @@ json to_json(const Scene& s) {
     out["effects"] = effects;
     out["render"] = write_keys(render_keys(), r.render, dim);
     out["render"]["camera"] = write_camera(r.render.camera, dim);
+    out["render"]["surface"] = write_keys(surface_keys(), r.render.surface, dim);
     out["output"] = write_keys(output_keys(), r.output, dim);
     return out;
 }

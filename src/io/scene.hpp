@@ -118,6 +118,7 @@ struct Scene {
         std::string colour_map = "auto";            // auto | viridis | turbo | diverging
         std::optional<std::array<double, 2>> range; // field values at the map's ends
         std::string spheres = "impostor";           // impostor | mesh
+        std::string style = "spheres";              // spheres | surface
         bool cull_buried = true;                    // 3D: skip particles no camera can see
         int video_quality = 20;                     // x264 constant quality (CRF), 0 best - 51
         VideoPreset video_preset = VideoPreset::veryfast; // x264 speed/size trade-off
@@ -154,6 +155,11 @@ struct Scene {
             };
             std::optional<Orbit> orbit;
         } camera;
+        struct Surface {         // style surface (render/surface/)
+            double voxel = 0.5;  // x spacing, the level set's (2D: grid's) cell
+            double radius = 1.0; // x spacing, each particle's sphere (2D: half the kernel's)
+            int smoothing = 2;   // smoothing passes
+        } surface;
     } render;
 
     struct Output {

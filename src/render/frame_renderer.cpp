@@ -7,6 +7,8 @@
 #include "render/particle_batch.hpp"
 #include "render/scenery.hpp"
 #include "render/sphere_pass.hpp"
+#include "render/surface/reconstruct.hpp"
+#include "render/surface/surface_pass.hpp"
 #include "sph/wall_clock.hpp"
 
 #include <algorithm>
@@ -24,6 +26,8 @@ struct FrameRenderer::Parts {
     ParticleBatch batch;
     SpherePass spheres;
     FlatPainter painter;
+    // render.style = surface: the mesh pass, made only for that style.
+    std::unique_ptr<SurfacePass> surface;
     Scenery scenery;
     Overlay overlay;
     // The overlay's room measured, the scene's place around it.
@@ -35,8 +39,9 @@ struct FrameRenderer::Parts {
     explicit Parts(const RenderSettings& s)
         : target(s.width, s.height, s.samples),
           colour_map(gl::make_colour_map_texture(s.colour_map)), outline_rule(s),
-          batch(s, outline_groups), spheres(s), scenery(s), overlay(s),
-          layout(layout_for(s, overlay.room())),
+          batch(s, outline_groups), spheres(s),
+          surface(s.style == "surface" ? std::make_unique<SurfacePass>(s) : nullptr), scenery(s),
+          overlay(s), layout(layout_for(s, overlay.room())),
           rig(s, layout.scene.width / std::max(1.0, layout.scene.height)) {}
 };
 
@@ -75,16 +80,30 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // The scene's camera, fitted into the room the overlay leaves.
     p.pose = p.rig.pose(frame);
     const Camera camera = make_camera(settings_, p.pose, p.layout);
-    // Which particles to draw, and on which outline.
+    // Which particles to draw, and on which outline (for a surface, the
+    // batch's counts of particles outside the colour range still warn).
     p.batch.fill(frame, camera, p.outline_rule);
     timings_.fill_seconds = seconds_since(start);
+    // The surface from the particles, on the CPU.
+    Surface surface;
+    if (p.surface) {
+        const auto surface_start = Clock::now();
+        surface = reconstruct_surface(frame, settings_.field, settings_.spacing, settings_.surface);
+        timings_.surface_seconds = seconds_since(surface_start);
+        timings_.surface_vertices = surface.mesh.vertices();
+    }
 
-    // Cleared to the background; spheres and colour bar share the colour map.
+    // Cleared to the background; the fluid and colour bar share the colour map.
     p.target.begin();
     gl::bind_colour_map(p.colour_map);
-    // The spheres, depth-tested with each other and with the solids.
-    p.spheres.upload(p.batch);
-    p.spheres.draw(p.batch, camera);
+    // The fluid, depth-tested with itself and with the solids.
+    if (p.surface) {
+        p.surface->upload(surface.mesh, camera);
+        p.surface->draw(camera);
+    } else {
+        p.spheres.upload(p.batch);
+        p.spheres.draw(p.batch, camera);
+    }
     // The solids and the overlay, then the pixels read back.
     return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
                         timings_);

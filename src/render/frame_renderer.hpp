@@ -22,6 +22,10 @@ struct FrameTimings {
     double fill_seconds = 0;     // culling and filling the instances (part of draw_seconds)
     double draw_seconds = 0;     // submitting and finishing the draw
     double readback_seconds = 0; // resolving and reading the pixels
+    // render.style = surface: reconstructing the surface and colouring its
+    // vertices on the CPU (part of draw_seconds), and its vertex count.
+    double surface_seconds = 0;
+    std::size_t surface_vertices = 0;
 };
 
 class FrameRenderer {

@@ -87,6 +87,11 @@ RenderSettings make_render_settings(const Scene& scene) {
     r.font = scene.render.font.value_or("");
     r.spheres = scene.render.spheres;
     r.radius = 0.5 * scene.fluid.spacing;
+    r.style = scene.render.style;
+    r.spacing = scene.fluid.spacing;
+    r.surface = {.voxel = scene.render.surface.voxel,
+                 .radius = scene.render.surface.radius,
+                 .smoothing = scene.render.surface.smoothing};
     for (int a = 0; a < scene.dimension; ++a) {
         r.domain_min[a] = scene.domain.min[a];
         r.domain_max[a] = scene.domain.max[a];

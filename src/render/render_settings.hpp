@@ -3,6 +3,7 @@
 // section: a plain struct with defaults and units (STYLE.md point 10).
 
 #include "io/scene.hpp"
+#include "render/surface/surface_mesh.hpp"
 
 #include <array>
 #include <glm/glm.hpp>
@@ -26,6 +27,11 @@ struct RenderSettings {
     // The key that set `range` ("render.range"), or empty when it is the
     // field's default from the scene's physics (default_colour_range).
     std::string range_key;
+    // How the fluid is drawn: spheres (one per particle) | surface (a mesh
+    // of the free surface reconstructed each frame, render/surface/).
+    std::string style = "spheres";
+    SurfaceSettings surface;          // style surface
+    double spacing = 0.002;           // m, the particles' lattice spacing
     std::string spheres = "impostor"; // impostor | mesh
     int mesh_subdivisions = 1;        // mesh: 80 triangles per sphere
     double radius = 0.001;            // m, drawn sphere radius

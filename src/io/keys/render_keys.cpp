@@ -39,6 +39,13 @@ const KeyTable<Scene::Render>& render_keys() {
          .doc = "How spheres are drawn: ray-cast impostors (fast) or the seed's instanced "
                 "meshes.",
          .choices = {"impostor", "mesh"}},
+        {.path = "style",
+         .field = &S::style,
+         .doc = "How the fluid is drawn: spheres, one per particle; surface, the free surface "
+                "reconstructed each frame from the particles (3D: an OpenVDB level set meshed "
+                "and shaded as water; 2D: the filled region with its outline) and coloured by "
+                "the colour field at its vertices (render.surface.*).",
+         .choices = {"spheres", "surface"}},
         {.path = "cull_buried",
          .field = &S::cull_buried,
          .doc = "3D: skip particles buried under two full layers of fluid (a camera outside the "
@@ -70,6 +77,33 @@ const KeyTable<Scene::Render>& render_keys() {
          .field = &S::backend,
          .doc = "Headless GL context.",
          .choices = {"auto", "egl", "osmesa"}},
+    };
+    return keys;
+}
+
+const KeyTable<Scene::Render::Surface>& surface_keys() {
+    using S = Scene::Render::Surface;
+    static const KeyTable<S> keys{
+        {.path = "voxel",
+         .field = &S::voxel,
+         .unit = "x spacing",
+         .doc = "render.style = surface: the level set's voxel (2D: the grid's cell), 0.1 to 2 "
+                "particle spacings; smaller is finer and slower (cost ~ 1 / voxel^3 in 3D).",
+         .bound = Bound::positive},
+        {.path = "radius",
+         .field = &S::radius,
+         .unit = "x spacing",
+         .doc = "render.style = surface: 3D, the radius of the sphere each particle adds to the "
+                "level set before it is smoothed and eroded back by radius - 0.5 (closes gaps "
+                "between particles), at least 1.5 voxels; 2D, half the support of the kernel "
+                "summed on the grid. 0.5 to 4 particle spacings.",
+         .bound = Bound::positive},
+        {.path = "smoothing",
+         .field = &S::smoothing,
+         .doc = "render.style = surface: smoothing passes, 3D Gaussian filter passes over the "
+                "level set, 2D binomial blur passes over the grid; 0 none.",
+         .min = 0,
+         .max = 20},
     };
     return keys;
 }

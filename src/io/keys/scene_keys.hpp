@@ -28,6 +28,7 @@ const KeyTable<Scene::Render::Camera::Orbit>& orbit_keys();
 void read_camera(FieldReader& r, Scene& s);
 // render.camera as read_camera reads it back.
 json write_camera(const Scene::Render::Camera& camera, int dimension);
+const KeyTable<Scene::Render::Surface>& surface_keys();
 // output_keys.cpp
 const KeyTable<Scene::Output>& output_keys();
 

@@ -1,0 +1,241 @@
+// Surface benchmark (render.style = surface): milliseconds per frame split
+// into the reconstruction (particles to level set to mesh, OpenVDB, on the
+// CPU), colouring the vertices, and drawing (upload, GL draw, overlay and
+// read-back), by backend, particle count (10k, 100k, 1M) and frame size
+// (1280x720, 1920x1080), with the mesh's size and the process's peak memory.
+// The fluid: a cube of particles on a jittered lattice with 2% of them as
+// spray above it, in a 0.1 m box, the spacing shrinking with the count as in
+// the render benchmark. A program that prints a table, not a timed test.
+//
+//   build/sphclip_bench_surface                  # the full table
+//   build/sphclip_bench_surface --csv FILE       # ... also to FILE, machine noted
+//   build/sphclip_bench_surface --png FOLDER     # ... and each row's frame
+//   build/sphclip_bench_surface --counts 100000 --backends egl
+//   build/sphclip_bench_surface --tiny           # one small frame (CI)
+#include "io/png_io.hpp"
+#include "render/frame_renderer.hpp"
+#include "render/gl_context.hpp"
+#include "render/surface/reconstruct.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <random>
+#include <string>
+#include <sys/resource.h>
+#include <thread>
+#include <vector>
+
+using namespace sph;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Snapshot make_fluid(std::size_t n, double spacing) {
+    Snapshot s;
+    s.dimension = 3;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const std::size_t spray = n / 50, block = n - spray;
+    const std::size_t side = std::size_t(std::ceil(std::cbrt(double(block))));
+    for (std::size_t i = 0; i < n; ++i) {
+        double p[3];
+        if (i < block) {
+            const std::size_t c[3] = {i % side, i / side % side, i / side / side};
+            for (int a = 0; a < 3; ++a)
+                p[a] = (double(c[a]) + 0.5 + 0.15 * u(rng)) * spacing;
+        } else {
+            // Drops above the block, a few spacings apart.
+            const double top = double(side) * spacing;
+            p[0] = (0.5 + 0.5 * u(rng)) * top;
+            p[1] = top * (1.05 + 0.1 * (0.5 + 0.5 * u(rng)));
+            p[2] = (0.5 + 0.5 * u(rng)) * top;
+        }
+        s.position.insert(s.position.end(), {p[0], p[1], p[2]});
+        s.velocity.insert(s.velocity.end(), {20 * p[1], 0, 0});
+        s.density.push_back(1000);
+        s.pressure.push_back(0);
+        s.id.push_back(std::uint32_t(i));
+    }
+    return s;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+double peak_rss_mib() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_maxrss) / 1024.0;
+}
+
+std::string first_line_with(const char* path, const std::string& key) {
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind(key, 0) == 0) {
+            const std::size_t colon = line.find(':');
+            return colon == std::string::npos ? line : line.substr(colon + 2);
+        }
+    return "";
+}
+
+std::string load_average() {
+    std::ifstream in("/proc/loadavg");
+    double one = 0, five = 0, fifteen = 0;
+    in >> one >> five >> fifteen;
+    return fmt::format("{} {} {}", one, five, fifteen);
+}
+
+std::vector<std::string> split(const std::string& list) {
+    std::vector<std::string> items;
+    std::size_t from = 0;
+    while (from <= list.size()) {
+        const std::size_t to = std::min(list.find(',', from), list.size());
+        if (to > from)
+            items.push_back(list.substr(from, to - from));
+        from = to + 1;
+    }
+    return items;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    bool tiny = false;
+    std::string csv_path, png_folder, counts_arg, backends_arg = "egl,osmesa";
+    int repeats = 3;
+    SurfaceSettings surface;
+    for (int k = 1; k < argc; ++k) {
+        const std::string arg = argv[k];
+        if (arg == "--tiny")
+            tiny = true;
+        else if (arg == "--csv" && k + 1 < argc)
+            csv_path = argv[++k];
+        else if (arg == "--png" && k + 1 < argc)
+            png_folder = argv[++k];
+        else if (arg == "--counts" && k + 1 < argc)
+            counts_arg = argv[++k];
+        else if (arg == "--backends" && k + 1 < argc)
+            backends_arg = argv[++k];
+        else if (arg == "--smoothing" && k + 1 < argc)
+            surface.smoothing = std::stoi(argv[++k]);
+        else if (arg == "--voxel" && k + 1 < argc)
+            surface.voxel = std::stod(argv[++k]);
+        else if (arg == "--repeats" && k + 1 < argc)
+            repeats = std::max(1, std::stoi(argv[++k]));
+        else {
+            fmt::print(stderr,
+                       "usage: {} [--tiny] [--counts N,N] [--backends egl,osmesa] [--repeats N] "
+                       "[--smoothing N] [--voxel V] [--csv FILE] [--png FOLDER]\n",
+                       argv[0]);
+            return 2;
+        }
+    }
+    if (!surface_3d_available()) {
+        fmt::print("this build has no OpenVDB: no 3D surface to measure\n");
+        return 0;
+    }
+    std::FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
+    auto emit = [csv](const std::string& line) {
+        fmt::print("{}\n", line);
+        if (csv) {
+            fmt::print(csv, "{}\n", line);
+            std::fflush(csv);
+        }
+    };
+    auto note = [&](const std::string& line) {
+        fmt::print("# {}\n", line);
+        if (csv)
+            fmt::print(csv, "# {}\n", line);
+    };
+    if (!png_folder.empty())
+        std::filesystem::create_directories(png_folder);
+    std::vector<std::size_t> counts =
+        tiny ? std::vector<std::size_t>{2000} : std::vector<std::size_t>{10000, 100000, 1000000};
+    if (!counts_arg.empty()) {
+        counts.clear();
+        for (const std::string& item : split(counts_arg))
+            counts.push_back(std::stoul(item));
+    }
+    const std::vector<std::array<int, 2>> sizes =
+        tiny ? std::vector<std::array<int, 2>>{{320, 180}}
+             : std::vector<std::array<int, 2>>{{1280, 720}, {1920, 1080}};
+    if (tiny)
+        repeats = 1;
+    {
+        const std::time_t now = std::time(nullptr);
+        char date[32];
+        std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+        note(fmt::format("sphclip_bench_surface, {}", date));
+        note(fmt::format("{} cores (nproc), {}", std::thread::hardware_concurrency(),
+                         first_line_with("/proc/cpuinfo", "model name")));
+        note(fmt::format("load average (1, 5, 15 min) at the start: {}", load_average()));
+        note(fmt::format("render.surface: voxel {}, radius {} (x spacing), smoothing {}",
+                         surface.voxel, surface.radius, surface.smoothing));
+    }
+    emit("backend,particles,width,height,vertices,triangles,reconstruct_ms,colour_ms,"
+         "draw_ms,readback_ms,frame_ms,peak_rss_mib");
+    const std::vector<std::string> backends = split(backends_arg);
+    for (std::size_t n : counts) {
+        const double box = 0.1, spacing = box / std::ceil(std::cbrt(double(n)));
+        const Snapshot frame = make_fluid(n, spacing);
+        for (const std::string& backend : backends) {
+            auto context = make_gl_context(backend);
+            for (const auto& [width, height] : sizes) {
+                RenderSettings r;
+                r.width = width;
+                r.height = height;
+                r.dimension = 3;
+                r.style = "surface";
+                r.surface = surface;
+                r.spacing = spacing;
+                r.radius = 0.5 * spacing;
+                r.range = {0, 2};
+                r.domain_min = glm::dvec3(0);
+                r.domain_max = glm::dvec3(box);
+                r.camera_target = glm::dvec3(0.05);
+                r.camera_position =
+                    glm::dvec3(0.05) + 0.2 * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
+                FrameRenderer renderer(r);
+                std::vector<double> reconstruct, colour, draw, readback, total;
+                std::size_t vertices = 0, triangles = 0;
+                Image image;
+                for (int k = 0; k < repeats; ++k) {
+                    // The split, from the reconstruction alone...
+                    const Surface s = reconstruct_surface(frame, r.field, spacing, r.surface);
+                    reconstruct.push_back(1e3 * s.reconstruction_seconds);
+                    colour.push_back(1e3 * s.colour_seconds);
+                    vertices = s.mesh.vertices();
+                    triangles = s.mesh.triangles.size() / 3;
+                    // ... and the whole frame as a run draws it.
+                    const auto start = Clock::now();
+                    image = renderer.render(frame);
+                    total.push_back(1e3 *
+                                    std::chrono::duration<double>(Clock::now() - start).count());
+                    const FrameTimings& t = renderer.last_timings();
+                    draw.push_back(1e3 * (t.draw_seconds - t.surface_seconds));
+                    readback.push_back(1e3 * t.readback_seconds);
+                }
+                emit(fmt::format("{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.0f}",
+                                 backend, n, width, height, vertices, triangles,
+                                 median(reconstruct), median(colour), median(draw),
+                                 median(readback), median(total), peak_rss_mib()));
+                if (!png_folder.empty())
+                    write_png(std::filesystem::path(png_folder) /
+                                  fmt::format("surface_{}_{}_{}x{}.png", backend, n, width, height),
+                              image);
+            }
+        }
+    }
+    if (csv)
+        std::fclose(csv);
+    return 0;
+}

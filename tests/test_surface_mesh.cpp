@@ -1,0 +1,331 @@
+// The fluid surface (src/render/surface/, src/io/surface_export.*): the 2D
+// region and the 3D level set's mesh sit where the particles' discs and
+// spheres end, are closed, face out, carry the colour field to their
+// vertices; the .ply's bytes follow its header and the .vdb reads back with
+// OpenVDB; EGL and OSMesa draw the same surface and match the golden images;
+// bad surface keys exit 2 naming the key. (The .ply read by VTK's own reader:
+// tests/exports/check_surface_with_vtk.py.)
+#include "io/image_compare.hpp"
+#include "io/png_io.hpp"
+#include "io/scene_setup.hpp"
+#include "io/surface_export.hpp"
+#include "render/frame_renderer.hpp"
+#include "render/gl_context.hpp"
+#include "render/surface/reconstruct.hpp"
+#include "support/run_sphclip.hpp"
+#include "support/temp_folder.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <utility>
+
+#ifdef SPHCLIP_HAVE_OPENVDB
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
+#endif
+
+using namespace sph;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A block of particles on a lattice of spacing s filling [0, side]^dim, the
+// speed equal to x (a linear field).
+Snapshot lattice_block(int dim, int per_side, double s) {
+    Snapshot f;
+    f.dimension = dim;
+    const int nz = dim == 3 ? per_side : 1;
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < per_side; ++j)
+            for (int i = 0; i < per_side; ++i) {
+                const double p[3] = {(i + 0.5) * s, (j + 0.5) * s, (k + 0.5) * s};
+                for (int a = 0; a < dim; ++a) {
+                    f.position.push_back(p[a]);
+                    f.velocity.push_back(a == 0 ? p[0] : 0);
+                }
+                f.density.push_back(1000);
+                f.pressure.push_back(0);
+                f.id.push_back(std::uint32_t(f.id.size()));
+            }
+    return f;
+}
+
+// Each undirected edge of the triangles, counted.
+std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges(const std::vector<std::uint32_t>& t) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> count;
+    for (std::size_t k = 0; k < t.size(); k += 3)
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t a = t[k + e], b = t[k + (e + 1) % 3];
+            ++count[{std::min(a, b), std::max(a, b)}];
+        }
+    return count;
+}
+
+} // namespace
+
+TEST_CASE("2D: the filled region is the particles' discs' block, its outline closed", "[surface]") {
+    const double s = 0.01;
+    const Snapshot f = lattice_block(2, 20, s); // [0, 0.2]^2
+    const Surface surface = reconstruct_surface(f, "velocity", s, SurfaceSettings{});
+    const SurfaceMesh& m = surface.mesh;
+    REQUIRE(m.dimension == 2);
+    REQUIRE(!m.triangles.empty());
+    double area = 0, lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
+    for (std::size_t k = 0; k < m.triangles.size(); k += 3) {
+        const float* a = &m.positions[3 * m.triangles[k]];
+        const float* b = &m.positions[3 * m.triangles[k + 1]];
+        const float* c = &m.positions[3 * m.triangles[k + 2]];
+        area += 0.5 * std::abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    }
+    for (std::size_t v = 0; v < m.vertices(); ++v)
+        for (int a = 0; a < 2; ++a) {
+            lo[a] = std::min(lo[a], double(m.positions[3 * v + a]));
+            hi[a] = std::max(hi[a], double(m.positions[3 * v + a]));
+        }
+    // The discs' block is 0.2 x 0.2; corners round off a little.
+    CHECK(area == Approx(0.04).epsilon(0.03));
+    for (int a = 0; a < 2; ++a) {
+        CHECK(lo[a] == Approx(0).margin(0.3 * s));
+        CHECK(hi[a] == Approx(0.2).margin(0.3 * s));
+    }
+    // Closed: every outline vertex ends exactly two segments.
+    std::map<std::uint32_t, int> ends;
+    for (std::uint32_t v : m.outline)
+        ++ends[v];
+    REQUIRE(!ends.empty());
+    for (const auto& [v, count] : ends)
+        CHECK(count == 2);
+    // The colour field (speed = x) carried to the vertices: inside the block
+    // the kernel average of a linear field is the field.
+    for (std::size_t v = 0; v < m.vertices(); ++v) {
+        const double x = m.positions[3 * v], y = m.positions[3 * v + 1];
+        if (x > 3 * s && x < 0.2 - 3 * s && y > 3 * s && y < 0.2 - 3 * s)
+            CHECK(m.scalar[v] == Approx(x).margin(1e-4));
+    }
+}
+
+TEST_CASE("2D: two separate blocks give two regions", "[surface]") {
+    const double s = 0.01;
+    Snapshot f = lattice_block(2, 8, s);
+    const Snapshot g = lattice_block(2, 8, s);
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        f.position.push_back(g.position[2 * i] + 0.2);
+        f.position.push_back(g.position[2 * i + 1]);
+        f.velocity.push_back(0);
+        f.velocity.push_back(0);
+        f.density.push_back(1000);
+        f.pressure.push_back(0);
+        f.id.push_back(std::uint32_t(f.id.size()));
+    }
+    const SurfaceMesh m = reconstruct_surface(f, "velocity", s, SurfaceSettings{}).mesh;
+    // No triangle spans the gap between 0.08 and 0.2.
+    for (std::size_t k = 0; k < m.triangles.size(); ++k)
+        CHECK(!(m.positions[3 * m.triangles[k]] > 0.1 && m.positions[3 * m.triangles[k]] < 0.18));
+}
+
+#ifdef SPHCLIP_HAVE_OPENVDB
+TEST_CASE("3D: the level set's mesh is closed, faces out, and bounds the spheres' block",
+          "[surface]") {
+    const double s = 0.01;
+    const Snapshot f = lattice_block(3, 12, s); // [0, 0.12]^3
+    const Surface surface = reconstruct_surface(f, "velocity", s, SurfaceSettings{});
+    const SurfaceMesh& m = surface.mesh;
+    REQUIRE(surface.level_set);
+    REQUIRE(m.vertices() > 100);
+    // Closed and manifold: every edge shared by exactly two triangles.
+    for (const auto& [edge, count] : edges(m.triangles))
+        CHECK(count == 2);
+    double lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9};
+    std::size_t outward = 0;
+    for (std::size_t v = 0; v < m.vertices(); ++v) {
+        double along = 0;
+        for (int a = 0; a < 3; ++a) {
+            const double p = m.positions[3 * v + a];
+            lo[a] = std::min(lo[a], p);
+            hi[a] = std::max(hi[a], p);
+            along += (p - 0.06) * m.normals[3 * v + a];
+        }
+        outward += along > 0;
+    }
+    CHECK(outward == m.vertices());
+    // Where the spheres of radius s / 2 end: the block [0, 0.12]^3, within
+    // a voxel (the smoothing rounds the edges in).
+    for (int a = 0; a < 3; ++a) {
+        CHECK(lo[a] == Approx(0).margin(0.5 * s));
+        CHECK(hi[a] == Approx(0.12).margin(0.5 * s));
+    }
+    // Speed = x carried to the vertices within a spacing.
+    for (std::size_t v = 0; v < m.vertices(); ++v)
+        CHECK(m.scalar[v] == Approx(m.positions[3 * v]).margin(s));
+}
+
+TEST_CASE("3D: the .vdb reads back with OpenVDB as the level set meshed", "[surface]") {
+    test::TempFolder tmp;
+    const double s = 0.01;
+    const Surface surface =
+        reconstruct_surface(lattice_block(3, 6, s), "velocity", s, SurfaceSettings{});
+    const fs::path path = tmp / "surface.vdb";
+    write_level_set(*surface.level_set, path);
+    CHECK(!fs::exists(tmp / "surface.vdb.partial"));
+    openvdb::initialize();
+    openvdb::io::File file(path.string());
+    file.open();
+    openvdb::GridBase::Ptr base = file.readGrid("surface");
+    file.close();
+    auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    REQUIRE(grid);
+    CHECK(grid->getGridClass() == openvdb::GRID_LEVEL_SET);
+    CHECK(grid->voxelSize()[0] == Approx(0.5 * s));
+    // Inside the block negative, outside positive, the surface between.
+    auto accessor = grid->getConstAccessor();
+    const auto inside = grid->transform().worldToIndexCellCentered(openvdb::Vec3d(0.03));
+    const auto outside = grid->transform().worldToIndexCellCentered(openvdb::Vec3d(0.07));
+    CHECK(accessor.getValue(inside) < 0);
+    CHECK(accessor.getValue(outside) > 0);
+    // The file's surface at zero is the drawn mesh: each vertex within a
+    // tenth of a voxel of the file's zero level.
+    openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>
+        sampler(accessor, grid->transform());
+    for (std::size_t v = 0; v < surface.mesh.vertices(); ++v) {
+        const float* p = &surface.mesh.positions[3 * v];
+        CHECK(std::abs(sampler.wsSample(openvdb::Vec3d(p[0], p[1], p[2]))) < 0.05 * s);
+    }
+}
+#endif
+
+TEST_CASE("the .ply is binary little-endian with the bytes its header promises", "[surface]") {
+    SurfaceMesh m;
+    m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    m.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+    m.scalar = {0, 0.5f, 1};
+    m.triangles = {0, 1, 2};
+    const std::string ply = ply_bytes(m, "speed", "viridis", {0, 1});
+    const std::string end = "end_header\n";
+    const auto body = ply.find(end);
+    REQUIRE(body != std::string::npos);
+    const std::string header = ply.substr(0, body);
+    CHECK(header.find("format binary_little_endian 1.0") != std::string::npos);
+    CHECK(header.find("element vertex 3") != std::string::npos);
+    CHECK(header.find("property float speed") != std::string::npos);
+    CHECK(header.find("element face 1") != std::string::npos);
+    CHECK(ply.size() - body - end.size() == 3 * (7 * 4 + 3) + (1 + 3 * 4));
+    float y1 = 0;
+    std::memcpy(&y1, ply.data() + body + end.size() + 31 + 4, 4);
+    CHECK(y1 == 0.f);
+}
+
+namespace {
+
+Scene tiny_surface_scene(int dimension) {
+    std::vector<Override> o{{"render.size", "[320,180]"}, {"render.style", "surface"}};
+    if (dimension == 2) {
+        o.push_back({"domain.max", "[0.1,0.06]"});
+        o.push_back({"fluid.spacing", "0.004"});
+        o.push_back({"fluid.blocks", R"([{"min":[0,0],"max":[0.04,0.04],"velocity":[0.4,0]},
+                                         {"min":[0.06,0.03],"max":[0.08,0.05],"velocity":[0,-1]}])"});
+    } else {
+        o.push_back({"dimension", "3"});
+        o.push_back({"domain.max", "[0.1,0.06,0.05]"});
+        o.push_back({"fluid.spacing", "0.005"});
+        o.push_back({"fluid.blocks",
+                     R"([{"min":[0,0,0],"max":[0.04,0.04,0.05],"velocity":[0.4,0,0]},
+                         {"min":[0.06,0.03,0.01],"max":[0.08,0.05,0.03],"velocity":[0,-1,0]}])"});
+    }
+    return default_scene(o);
+}
+
+template <int D>
+Snapshot first_frame(const Scene& scene) {
+    auto sim = make_simulation<D>(scene);
+    sim.update_fields();
+    Snapshot s;
+    s.stats = measure_frame(sim.params(), sim.state());
+    copy_fields(sim.state(), s);
+    return s;
+}
+
+Image render_surface(const Scene& scene, std::string_view backend) {
+    auto context = make_gl_context(backend);
+    FrameRenderer renderer(make_render_settings(scene));
+    return scene.dimension == 2 ? renderer.render(first_frame<2>(scene))
+                                : renderer.render(first_frame<3>(scene));
+}
+
+void check_golden(const Image& image, const std::string& name) {
+    const fs::path golden = fs::path(SPHCLIP_SOURCE_DIR) / "tests" / "golden" / (name + ".png");
+    if (std::getenv("SPHCLIP_UPDATE_GOLDEN")) {
+        write_png(golden, image);
+        WARN("rewrote " << golden);
+    }
+    REQUIRE(fs::exists(golden));
+    const CompareResult result = compare_images(read_png(golden), image, CompareOptions{});
+    INFO(name << ": mean difference " << result.mean_difference << ", different "
+              << result.different_percent << "%");
+    if (!result.match)
+        write_png(fs::temp_directory_path() / (name + "_failed.png"), image);
+    CHECK(result.match);
+}
+
+} // namespace
+
+TEST_CASE("surface frames: EGL and OSMesa agree pixel for pixel and match the goldens",
+          "[surface][render]") {
+    std::vector<int> dims{2};
+    if (surface_3d_available())
+        dims.push_back(3);
+    for (int dim : dims) {
+        INFO(dim << "D");
+        const Scene scene = tiny_surface_scene(dim);
+        const Image egl = render_surface(scene, "egl");
+        const Image osmesa = render_surface(scene, "osmesa");
+        REQUIRE(egl.width == osmesa.width);
+        CHECK(egl.rgba == osmesa.rgba);
+        check_golden(egl, dim == 2 ? "tiny_surface_2d" : "tiny_surface_3d");
+        check_golden(osmesa, dim == 2 ? "tiny_surface_2d" : "tiny_surface_3d");
+    }
+}
+
+TEST_CASE("bad surface keys exit 2 naming the key, and write nothing", "[surface][cli]") {
+    test::TempFolder tmp;
+    const std::vector<std::pair<std::string, std::string>> bad{
+        {"render.style=blobs", "render.style"},
+        {"render.surface.voxel=5", "render.surface.voxel"},
+        {"render.surface.voxel=0", "render.surface.voxel"},
+        {"render.surface.radius=0.2", "render.surface.radius"},
+        {"render.surface.smoothing=-1", "render.surface.smoothing"},
+    };
+    for (const auto& [set, key] : bad) {
+        INFO(set);
+        const fs::path out = tmp / "out";
+        const auto r = test::run_sphclip(
+            tmp, {"run", "--set", set, "--out", out.string(), "--duration", "0.01", "--quiet"});
+        CHECK(r.exit_code == 2);
+        CHECK(r.output.find(key) != std::string::npos);
+        CHECK(!fs::exists(out));
+    }
+}
+
+TEST_CASE("the surface export writes a .ply per frame (and a .vdb in 3D)", "[surface][cli]") {
+    test::TempFolder tmp;
+    const fs::path out = tmp / "out";
+    const std::string scene =
+        (fs::path(SPHCLIP_SOURCE_DIR) / "scenes" / "dam_break_3d.json").string();
+    const auto r = test::run_sphclip(
+        tmp, {"run", scene, "--out", out.string(), "--export", "surface", "--no-png", "--no-mp4",
+              "--duration", "0.02", "--fps", "50", "--set", "fluid.spacing=0.01", "--quiet"});
+    if (!surface_3d_available()) {
+        CHECK(r.exit_code == 2);
+        CHECK(r.output.find("--export") != std::string::npos);
+        return;
+    }
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    for (const char* name : {"frame_00000.ply", "frame_00001.ply", "frame_00000.vdb"})
+        CHECK(fs::file_size(out / "surface" / name) > 100);
+    CHECK(!fs::exists(out / "particles"));
+    for (const auto& entry : fs::directory_iterator(out / "surface"))
+        CHECK(entry.path().extension() != ".partial");
+}

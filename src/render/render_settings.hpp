@@ -48,6 +48,14 @@ struct RenderSettings {
     // Skip particles whose sphere lies wholly outside the view: they colour
     // no pixel, so the frame is the same without them.
     bool cull_outside_view = true;
+    // Light and depth (docs/rendering.md, "Light and depth"); the first four
+    // act in 3D only.
+    bool shadows = true;              // the key light's soft shadows
+    bool ambient_occlusion = true;    // screen-space ambient occlusion
+    bool floor = true;                // a floor under the domain
+    bool tank = true;                 // the domain's walls as faint glass
+    std::string background = "light"; // light | dark (palette.hpp)
+    glm::dvec3 up{0, 1, 0};           // unit, against gravity: the floor's normal
 };
 
 // The field's range when the scene sets none, from the scene's physics, the

@@ -145,6 +145,7 @@ Image VariantRenderer::render(const Snapshot& frame) {
     timings_.fill_seconds = seconds_since(start);
 
     p.target.begin();
+    p.overlay.backdrop().draw();
     gl::bind_colour_map(p.colour_map);
     p.spheres.upload(p.batch);
     p.spheres.draw(p.batch, camera);
@@ -160,6 +161,7 @@ Image VariantRenderer::render(const Snapshot& frame) {
             p.spheres.draw_outlines(Outline::triangle, p.spheres.first(flat_group), flat);
         }
     }
+    p.scenery.draw_solids(camera);
     return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
                         timings_);
 }

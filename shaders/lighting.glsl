@@ -46,14 +46,16 @@ float key_visibility(vec3 position, vec3 normal) {
     return lit / 12.0;
 }
 
-// `base` sRGB; `normal`, `to_eye` unit, view space; `position` view space;
-// `gloss` 0 (matte) to 1 (the fluid's). Returns sRGB.
-vec3 shade(vec3 base, vec3 normal, vec3 to_eye, vec3 position, float gloss) {
+// `base` sRGB; `normal`, `to_eye` unit, view space; `visible` the share of
+// the key light that reaches the point; `gloss` 0 (matte) to 1 (the
+// fluid's). Returns sRGB.
+vec3 shade_lit(vec3 base, vec3 normal, vec3 to_eye, float visible, float gloss) {
     vec3 albedo = srgb_to_linear(base);
-    float facing = max(dot(normal, u_light), 0.0);
-    float key = facing > 0.0 ? facing * key_visibility(position, normal) : 0.0;
+    float key = max(dot(normal, u_light), 0.0) * visible;
     vec3 ambient = mix(u_ground, u_sky, 0.5 + 0.5 * dot(normal, u_up));
-    vec3 colour = albedo * (ambient + 0.85 * key);
+    // The key at 0.7: where it meets the surface head on, ambient plus key
+    // is about 1, and the sphere shows the colour bar's colour.
+    vec3 colour = albedo * (ambient + 0.7 * key);
     float highlight = pow(max(dot(normal, normalize(u_light + to_eye)), 0.0), 80.0);
     // Clamped: dot() may pass 1 by a rounding, and pow() of a negative is NaN.
     float fresnel = 0.02 + 0.98 * pow(clamp(1.0 - dot(normal, to_eye), 0.0, 1.0), 5.0);
@@ -61,9 +63,15 @@ vec3 shade(vec3 base, vec3 normal, vec3 to_eye, vec3 position, float gloss) {
     return linear_to_srgb(colour);
 }
 
-// Without a position (no shadow): the render benchmark's flat discs.
+// At `position` (view space), shadowed.
+vec3 shade(vec3 base, vec3 normal, vec3 to_eye, vec3 position, float gloss) {
+    float visible = dot(normal, u_light) > 0.0 ? key_visibility(position, normal) : 0.0;
+    return shade_lit(base, normal, to_eye, visible, gloss);
+}
+
+// Unshadowed, glossy: the render benchmark's flat discs.
 vec3 shade(vec3 base, vec3 normal, vec3 to_eye) {
-    return shade(base, normal, to_eye, vec3(0.0), 1.0);
+    return shade_lit(base, normal, to_eye, 1.0, 1.0);
 }
 
 // Colour of a particle's scalar through the colour map, range fixed per clip.

@@ -25,10 +25,10 @@ void make_texture(const gl::Texture& texture, GLenum format, int width, int heig
 
 AmbientOcclusion::AmbientOcclusion(int width, int height, double reach)
     : width_(width), height_(height), reach_(float(reach)),
-      occlusion_program_(gl::link_program(shaders::fullscreen_vert,
-                                          shaders::ambient_occlusion_frag, "")),
-      apply_program_(gl::link_program(shaders::fullscreen_vert,
-                                      shaders::ambient_occlusion_apply_frag, "")),
+      occlusion_program_(
+          gl::link_program(shaders::fullscreen_vert, shaders::ambient_occlusion_frag, "")),
+      apply_program_(
+          gl::link_program(shaders::fullscreen_vert, shaders::ambient_occlusion_apply_frag, "")),
       vao_(gl::VertexArray::generate()), depth_(gl::Texture::generate()),
       occlusion_(gl::Texture::generate()), depth_framebuffer_(gl::Framebuffer::generate()),
       occlusion_framebuffer_(gl::Framebuffer::generate()) {
@@ -42,8 +42,7 @@ AmbientOcclusion::AmbientOcclusion(int width, int height, double reach)
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("the ambient occlusion's depth framebuffer is incomplete");
     glBindFramebuffer(GL_FRAMEBUFFER, occlusion_framebuffer_.id());
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, occlusion_.id(),
-                           0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, occlusion_.id(), 0);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         throw std::runtime_error("the ambient occlusion's framebuffer is incomplete");
     for (const GLuint id : {occlusion_program_.id(), apply_program_.id()}) {

@@ -1,18 +1,15 @@
 #include "render/frame_renderer.hpp"
 
-#include "render/ambient_occlusion.hpp"
 #include "render/camera.hpp"
 #include "render/frame_end.hpp"
 #include "render/gl_resources.hpp"
+#include "render/light_rig.hpp"
 #include "render/overlay.hpp"
-#include "render/palette.hpp"
 #include "render/particle_batch.hpp"
 #include "render/scenery.hpp"
-#include "render/shadow_pass.hpp"
 #include "render/sphere_pass.hpp"
 
 #include <chrono>
-#include <optional>
 
 namespace sph {
 
@@ -40,22 +37,15 @@ struct FrameRenderer::Parts {
     Overlay overlay;
     // The overlay's room measured, the scene's place around it.
     FrameLayout layout;
-    // Light and depth (3D, each where the settings ask for it).
-    std::optional<ShadowMap> shadow_map;
-    std::optional<AmbientOcclusion> occlusion;
+    // The key light, its shadows and the ambient occlusion.
+    LightRig light;
 
     explicit Parts(const RenderSettings& s)
         : target(s.width, s.height, s.samples),
           colour_map(gl::make_colour_map_texture(s.colour_map)), outline_rule(s),
           batch(s, outline_groups), spheres(s), scenery(s), overlay(s),
-          layout(layout_frame(s.width, s.height, overlay.room(), scene_aspect(s))) {
-        if (s.dimension == 3 && s.shadows)
-            shadow_map.emplace(shadow_map_size(scenery.reach(), s.radius));
-        // Occluders count within four sphere radii: the creases between
-        // neighbours and the first layer behind the surface.
-        if (s.dimension == 3 && s.ambient_occlusion)
-            occlusion.emplace(s.width, s.height, 4 * s.radius);
-    }
+          layout(layout_frame(s.width, s.height, overlay.room(), scene_aspect(s))),
+          light(s, scenery.reach()) {}
 };
 
 FrameRenderer::FrameRenderer(const RenderSettings& settings)
@@ -94,14 +84,11 @@ Image FrameRenderer::render(const Snapshot& frame) {
 
     // The key light, and the depth of what casts its shadows.
     p.spheres.upload(p.batch);
-    Lighting lighting = key_light(camera, settings_.up, palette(settings_.background));
-    if (p.shadow_map && !camera.orthographic) {
-        p.shadow_map->render(
-            camera, p.scenery.reach(), 1.5 * settings_.radius, lighting,
-            {[&](const Camera& light) { p.spheres.draw_depth(p.batch, light); },
-             [&](const Camera& light) { p.scenery.draw_depth(light); }});
-        p.shadow_map->bind();
-    }
+    const Lighting lighting =
+        p.light.light(camera, {[&](const Camera& light) { p.spheres.draw_depth(p.batch, light); },
+                               [&](const Camera& light) {
+                                   p.scenery.draw_depth(light);
+                               }});
     p.spheres.set_lighting(lighting);
     p.scenery.set_lighting(lighting);
 
@@ -114,8 +101,7 @@ Image FrameRenderer::render(const Snapshot& frame) {
     p.scenery.draw_floor(camera);
     p.spheres.draw(p.batch, camera);
     p.scenery.draw_solids(camera);
-    if (p.occlusion && !camera.orthographic)
-        p.occlusion->apply(p.target, camera);
+    p.light.occlude(p.target, camera);
     // The solids and the overlay, then the pixels read back.
     return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
                         timings_);

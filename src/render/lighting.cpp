@@ -29,7 +29,9 @@ Lighting key_light(const Camera& camera, const glm::dvec3& up_world, const Palet
 }
 
 void set_lighting(GLuint program, const Lighting& l) {
-    auto at = [program](const char* name) { return glGetUniformLocation(program, name); };
+    auto at = [program](const char* name) {
+        return glGetUniformLocation(program, name);
+    };
     glUniform3fv(at("u_light"), 1, glm::value_ptr(l.to_light));
     glUniform3fv(at("u_up"), 1, glm::value_ptr(l.up));
     glUniform3fv(at("u_sky"), 1, glm::value_ptr(l.sky));

@@ -174,8 +174,8 @@ std::vector<float> glass_faces(const glm::vec3& e, int up_axis, float up_sign) {
 
 Scenery::Scenery(const RenderSettings& s)
     : dimension_(s.dimension), domain_min_(s.domain_min), domain_max_(s.domain_max),
-      behind_(float(-2 * s.radius)), image_height_(s.height), palette_(palette(s.background)), obstacles_(s.obstacles),
-      paddles_(s.paddles) {
+      behind_(float(-2 * s.radius)), image_height_(s.height), palette_(palette(s.background)),
+      obstacles_(s.obstacles), paddles_(s.paddles) {
     const glm::vec3 half(0.5 * (s.domain_max - s.domain_min));
     reach_ = 1.02 * glm::length(glm::dvec3(half));
     if (dimension_ == 3 && (s.floor || s.tank)) {
@@ -195,7 +195,8 @@ Scenery::Scenery(const RenderSettings& s)
         if (s.floor) {
             const int b = (up_axis + 1) % 3, c = (up_axis + 2) % 3;
             std::vector<float> quad;
-            for (const auto& [u, v] : {std::pair{-1.f, -1.f}, {1.f, -1.f}, {-1.f, 1.f}, {1.f, 1.f}}) {
+            for (const auto& [u, v] :
+                 {std::pair{-1.f, -1.f}, {1.f, -1.f}, {-1.f, 1.f}, {1.f, 1.f}}) {
                 glm::vec3 p(0);
                 p[up_axis] = -up_sign * half[up_axis];
                 p[b] = u * floor_fade_.y;
@@ -292,7 +293,9 @@ void Scenery::draw_glass(const Camera& camera) const {
         return;
     const GLuint program = glass_program_.id();
     set_camera(program, camera);
-    glUniform3fv(glGetUniformLocation(program, "u_colour"), 1, glm::value_ptr(palette_.sky));
+    // A pale tint: reflections brighter than the backdrop, so the walls
+    // read as glass, not as smoked panes.
+    glUniform3f(glGetUniformLocation(program, "u_colour"), 0.97f, 0.98f, 1.f);
     // Over what is drawn, hiding nothing drawn later.
     glEnable(GL_BLEND);
     // Colour only: the frame stays opaque (a PNG with see-through edges

@@ -43,7 +43,7 @@ class Scenery {
 
     int dimension_;
     glm::dvec3 domain_min_, domain_max_;
-    float behind_; // 2D: the fills' depth, behind the particles
+    float behind_;     // 2D: the fills' depth, behind the particles
     int image_height_; // px
     const Palette& palette_;
     Lighting lighting_;

@@ -45,8 +45,7 @@ void ShadowMap::render(const Camera& eye, double reach, double softness, Lightin
     // The light's direction in the scene, from the eye's view space.
     const glm::mat3 world_from_view = glm::transpose(glm::mat3(eye.view));
     const glm::vec3 to_light = glm::normalize(world_from_view * lighting.to_light);
-    const glm::vec3 side =
-        std::abs(to_light.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::vec3 side = std::abs(to_light.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
     Camera light;
     light.origin = eye.origin;
     light.orthographic = true;

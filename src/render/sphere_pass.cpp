@@ -132,8 +132,7 @@ void SpherePass::draw_depth(const ParticleBatch& batch, const Camera& light) con
     draw_with(impostor_ ? depth_program_.id() : program_.id(), batch, light);
 }
 
-void SpherePass::draw_with(GLuint program, const ParticleBatch& batch,
-                           const Camera& camera) const {
+void SpherePass::draw_with(GLuint program, const ParticleBatch& batch, const Camera& camera) const {
     if (batch.drawn() == 0)
         return;
     set_uniforms(program, camera);

@@ -111,6 +111,11 @@ TEST_CASE("frames match the golden images, with either backend", "[render]") {
         INFO(backend);
         check_against_golden(render_scene(tiny_scene(2), backend), "tiny_2d");
         check_against_golden(render_scene(tiny_scene(3), backend), "tiny_3d");
+        check_against_golden(render_scene(tiny_scene(3, "impostor",
+                                                     {{"render.shadows", "true"},
+                                                      {"render.ambient_occlusion", "true"}}),
+                                          backend),
+                             "tiny_3d_lit");
         // Each of light and depth's switches off, on the dark palette.
         check_against_golden(render_scene(tiny_scene(3, "impostor",
                                                      {{"render.shadows", "false"},

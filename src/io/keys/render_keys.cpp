@@ -67,12 +67,14 @@ const KeyTable<Scene::Render>& render_keys() {
          .field = &S::shadows,
          .doc = "3D: the key light casts soft shadows (a shadow map filtered over about a "
                 "particle's radius) on the fluid, the floor and the solids; 2D scenes have "
-                "none."},
+                "none. Off by default: it costs about as much as the spheres "
+                "themselves on llvmpipe (docs/rendering.md)."},
         {.path = "ambient_occlusion",
          .field = &S::ambient_occlusion,
          .doc = "3D: screen-space ambient occlusion darkens creases, contact with the floor and "
                 "walls, and the hollows of a splash, over about four particle radii; 2D scenes "
-                "have none."},
+                "have none. Off by default: two passes over the image, as costly as the "
+                "spheres on llvmpipe (docs/rendering.md)."},
         {.path = "floor",
          .field = &S::floor,
          .doc = "3D: a matte floor under the domain (against gravity; y without it) that "

@@ -1,11 +1,77 @@
-// Shared by every sphere technique, so impostors and meshes are lit the same:
-// one directional light fixed to the camera, Lambert diffuse, ambient, and a
-// small Blinn-Phong highlight that shows the spheres' roundness.
+// Shared by every lit program (spheres, solids, the floor), so all are lit
+// the same. Linear light: colours come in as sRGB values (the colour map,
+// as the colour bar shows it), are decoded, lit, and encoded again, so a
+// sphere's side facing the key light shows the bar's own colour and its
+// shading falls off as light does. A key light (shadowed through the shadow
+// map, render/lighting.hpp) and an ambient blended from a bright sky above
+// to a dark ground below; on glossy surfaces a Blinn-Phong highlight and the
+// sky reflected by Schlick's Fresnel term (water's F0 = 0.02, n = 1.33),
+// which gives drops their wet rim.
+uniform vec3 u_light; // view space, towards the key light
+uniform vec3 u_up;    // view space, against gravity
+uniform vec3 u_sky, u_ground;
+uniform bool u_shadows;
+uniform sampler2DShadow u_shadow_map;
+uniform mat4 u_shadow_from_view;
+uniform float u_shadow_softness; // uv, the filter's radius
+uniform float u_shadow_offset;   // m, along the normal
+
+vec3 srgb_to_linear(vec3 c) {
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
+}
+vec3 linear_to_srgb(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+
+// How much of the key light reaches `position` (view space): the shadow map
+// compared at 12 points of a Poisson disc, each with the hardware's 2x2
+// bilinear comparison, for a soft edge of about the filter's radius
+// (percentage-closer filtering, Reeves, Salesin & Cook 1987). Looked up a
+// little off the surface along its normal, so a surface does not shadow
+// itself.
+float key_visibility(vec3 position, vec3 normal) {
+    if (!u_shadows)
+        return 1.0;
+    vec3 s = (u_shadow_from_view * vec4(position + u_shadow_offset * normal, 1.0)).xyz;
+    if (any(lessThan(s, vec3(0.0))) || any(greaterThan(s, vec3(1.0))))
+        return 1.0;
+    const vec2 disc[12] = vec2[](vec2(-0.326, -0.406), vec2(-0.840, -0.074), vec2(-0.696, 0.457),
+                                 vec2(-0.203, 0.621), vec2(0.962, -0.195), vec2(0.473, -0.480),
+                                 vec2(0.519, 0.767), vec2(0.185, -0.893), vec2(0.507, 0.064),
+                                 vec2(0.896, 0.412), vec2(-0.322, -0.933), vec2(-0.792, -0.598));
+    float lit = 0.0;
+    for (int k = 0; k < 12; ++k)
+        lit += textureLod(u_shadow_map, vec3(s.xy + u_shadow_softness * disc[k], s.z), 0.0);
+    return lit / 12.0;
+}
+
+// `base` sRGB; `normal`, `to_eye` unit, view space; `visible` the share of
+// the key light that reaches the point; `gloss` 0 (matte) to 1 (the
+// fluid's). Returns sRGB.
+vec3 shade_lit(vec3 base, vec3 normal, vec3 to_eye, float visible, float gloss) {
+    vec3 albedo = srgb_to_linear(base);
+    float key = max(dot(normal, u_light), 0.0) * visible;
+    vec3 ambient = mix(u_ground, u_sky, 0.5 + 0.5 * dot(normal, u_up));
+    // The key at 0.7: where it meets the surface head on, ambient plus key
+    // is about 1, and the sphere shows the colour bar's colour.
+    vec3 colour = albedo * (ambient + 0.7 * key);
+    float highlight = pow(max(dot(normal, normalize(u_light + to_eye)), 0.0), 80.0);
+    // Clamped: dot() may pass 1 by a rounding, and pow() of a negative is NaN.
+    float fresnel = 0.02 + 0.98 * pow(clamp(1.0 - dot(normal, to_eye), 0.0, 1.0), 5.0);
+    colour = mix(colour, 1.6 * u_sky, 0.6 * gloss * fresnel) + gloss * 0.6 * highlight * key;
+    return linear_to_srgb(colour);
+}
+
+// At `position` (view space), shadowed.
+vec3 shade(vec3 base, vec3 normal, vec3 to_eye, vec3 position, float gloss) {
+    float visible = dot(normal, u_light) > 0.0 ? key_visibility(position, normal) : 0.0;
+    return shade_lit(base, normal, to_eye, visible, gloss);
+}
+
+// Unshadowed, glossy: the render benchmark's flat discs.
 vec3 shade(vec3 base, vec3 normal, vec3 to_eye) {
-    const vec3 light = normalize(vec3(0.35, 0.6, 0.7));
-    float diffuse = max(dot(normal, light), 0.0);
-    float specular = pow(max(dot(normal, normalize(light + to_eye)), 0.0), 40.0);
-    return base * (0.3 + 0.7 * diffuse) + vec3(0.22) * specular;
+    return shade_lit(base, normal, to_eye, 1.0, 1.0);
 }
 
 // Colour of a particle's scalar through the colour map, range fixed per clip.

@@ -27,5 +27,10 @@ void main() {
     vec3 normal = (hit - v_centre) / u_radius;
     vec4 clip = u_projection * vec4(hit, 1.0);
     gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
-    f_colour = vec4(shade(v_colour, normal, -direction), 1.0);
+#ifdef DEPTH_ONLY
+    // The shadow map's pass: depth is all it keeps.
+    f_colour = vec4(1.0);
+#else
+    f_colour = vec4(shade(v_colour, normal, -direction, hit, 1.0), 1.0);
+#endif
 }

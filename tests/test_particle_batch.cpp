@@ -26,6 +26,7 @@ RenderSettings front_view() {
     r.width = 320;
     r.height = 180;
     r.dimension = 3;
+    r.shadows = false; // with shadows nothing is culled outside the view
     r.radius = 0.01;
     r.camera_position = {0.5, 0.5, 3};
     r.camera_target = {0.5, 0.5, 0.5};

@@ -26,8 +26,10 @@ namespace fs = std::filesystem;
 namespace {
 
 // A small block moving right, coloured by speed with some variety.
-Scene tiny_scene(int dimension, const std::string& spheres = "impostor") {
+Scene tiny_scene(int dimension, const std::string& spheres = "impostor",
+                 const std::vector<Override>& more = {}) {
     std::vector<Override> o{{"render.size", "[320,180]"}, {"render.spheres", spheres}};
+    o.insert(o.end(), more.begin(), more.end());
     if (dimension == 2) {
         o.push_back({"domain.max", "[0.1,0.06]"});
         o.push_back({"fluid.spacing", "0.004"});
@@ -109,6 +111,23 @@ TEST_CASE("frames match the golden images, with either backend", "[render]") {
         INFO(backend);
         check_against_golden(render_scene(tiny_scene(2), backend), "tiny_2d");
         check_against_golden(render_scene(tiny_scene(3), backend), "tiny_3d");
+        check_against_golden(render_scene(tiny_scene(3, "impostor",
+                                                     {{"render.shadows", "true"},
+                                                      {"render.ambient_occlusion", "true"}}),
+                                          backend),
+                             "tiny_3d_lit");
+        // Each of light and depth's switches off, on the dark palette.
+        check_against_golden(render_scene(tiny_scene(3, "impostor",
+                                                     {{"render.shadows", "false"},
+                                                      {"render.ambient_occlusion", "false"},
+                                                      {"render.floor", "false"},
+                                                      {"render.tank", "false"},
+                                                      {"render.background", "dark"}}),
+                                          backend),
+                             "tiny_3d_plain");
+        check_against_golden(
+            render_scene(tiny_scene(2, "impostor", {{"render.background", "dark"}}), backend),
+            "tiny_2d_dark");
     }
 }
 

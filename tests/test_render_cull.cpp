@@ -62,6 +62,13 @@ TEST_CASE("culling particles outside the view leaves the 3D frame unchanged", "[
             r.camera_position = {0.13, 0.12, 0.14};
             r.camera_target = {0.08, 0.07, 0.06};
             r.fov = 30;
+            // With shadows nothing is culled: a particle outside the view
+            // may shadow one inside it.
+            r.shadows = true;
+            const Frames shadowed = render_both(r, snapshot, backend);
+            CHECK(shadowed.outside == 0);
+            CHECK(shadowed.culled.rgba == shadowed.all.rgba);
+            r.shadows = false;
             const Frames f = render_both(r, snapshot, backend);
             CHECK(f.outside > 0);
             CHECK(f.drawn_culled + f.outside == f.drawn_all);

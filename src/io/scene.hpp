@@ -126,6 +126,11 @@ struct Scene {
         std::optional<std::string> title;                 // above the scene; none by default
         std::optional<std::string> caption; // {time} {frame} {steps}; default time and frame
         std::optional<std::string> font;    // a font file; default DejaVu Sans
+        bool shadows = false;               // 3D: the key light's soft shadows
+        bool ambient_occlusion = false;     // 3D: screen-space ambient occlusion
+        bool floor = true;                  // 3D: a floor under the domain
+        bool tank = true;                   // 3D: the domain's walls as faint glass
+        std::string background = "light";   // light | dark
         struct Camera {
             // What the default camera frames: the domain, the fluid where it
             // starts (blocks and emitters), or the fluid's bounds as they move.

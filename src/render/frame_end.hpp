@@ -19,10 +19,11 @@ namespace gl {
 class RenderTarget;
 }
 
-// Draws the solids (mesh obstacles, the domain box, the other obstacles and
-// the paddles), then the overlay (colour bar, its labels, the caption) over
-// everything, and reads the samples back resolved, rows top-down. Sets the
-// draw time (since `start`, which began the frame) and the readback time.
+// Draws the rest of the scenery (the tank's glass, the domain box, the
+// obstacles' outlines and the paddles; the mesh obstacles are drawn before,
+// with the particles: Scenery::draw_solids), then the overlay (colour bar, its labels, the caption)
+// over everything, and reads the samples back resolved, rows top-down. Sets the draw time (since
+// `start`, which began the frame) and the readback time.
 Image finish_frame(Scenery& scenery, Overlay& overlay, FlatPainter& painter,
                    gl::RenderTarget& target, const Camera& camera, const Snapshot& frame,
                    const FrameLayout& layout, std::chrono::steady_clock::time_point start,

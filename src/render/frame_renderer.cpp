@@ -3,6 +3,7 @@
 #include "render/camera.hpp"
 #include "render/frame_end.hpp"
 #include "render/gl_resources.hpp"
+#include "render/light_rig.hpp"
 #include "render/overlay.hpp"
 #include "render/particle_batch.hpp"
 #include "render/scenery.hpp"
@@ -17,8 +18,8 @@
 namespace sph {
 
 // Everything that lives on the GPU or is reused from frame to frame, in the
-// order the frame uses it. A second way of drawing the fluid (a surface
-// mesh) would be a batch and a pass of its own beside the spheres'.
+// order the frame uses it. The fluid is drawn as spheres or, with
+// render.style = surface, as the mesh of its surface.
 struct FrameRenderer::Parts {
     gl::RenderTarget target;
     gl::Texture colour_map;
@@ -35,6 +36,8 @@ struct FrameRenderer::Parts {
     // Each frame's camera, fitted into the scene's place.
     CameraRig rig;
     CameraPose pose;
+    // The key light, its shadows and the ambient occlusion.
+    LightRig light;
 
     explicit Parts(const RenderSettings& s)
         : target(s.width, s.height, s.samples),
@@ -42,7 +45,8 @@ struct FrameRenderer::Parts {
           batch(s, outline_groups), spheres(s),
           surface(s.style == "surface" ? std::make_unique<SurfacePass>(s) : nullptr), scenery(s),
           overlay(s), layout(layout_for(s, overlay.room())),
-          rig(s, layout.scene.width / std::max(1.0, layout.scene.height)) {}
+          rig(s, layout.scene.width / std::max(1.0, layout.scene.height)),
+          light(s, scenery.reach()) {}
 };
 
 FrameRenderer::FrameRenderer(const RenderSettings& settings)
@@ -93,17 +97,35 @@ Image FrameRenderer::render(const Snapshot& frame) {
         timings_.surface_vertices = surface.mesh.vertices();
     }
 
-    // Cleared to the background; the fluid and colour bar share the colour map.
-    p.target.begin();
-    gl::bind_colour_map(p.colour_map);
-    // The fluid, depth-tested with itself and with the solids.
-    if (p.surface) {
+    // The key light, and the depth of what casts its shadows (the surface
+    // mesh casts none yet: docs/rendering.md).
+    if (p.surface)
         p.surface->upload(surface.mesh, camera);
-        p.surface->draw(camera);
-    } else {
+    else
         p.spheres.upload(p.batch);
+    const Lighting lighting = p.light.light(camera, {[&](const Camera& light) {
+                                                         if (!p.surface)
+                                                             p.spheres.draw_depth(p.batch, light);
+                                                     },
+                                                     [&](const Camera& light) {
+                                                         p.scenery.draw_depth(light);
+                                                     }});
+    p.spheres.set_lighting(lighting);
+    p.scenery.set_lighting(lighting);
+
+    // The backdrop; the fluid and colour bar share the colour map.
+    p.target.begin();
+    p.overlay.backdrop().draw();
+    gl::bind_colour_map(p.colour_map);
+    // The floor, then the fluid, depth-tested with itself and with the
+    // solids; their creases darkened.
+    p.scenery.draw_floor(camera);
+    if (p.surface)
+        p.surface->draw(camera);
+    else
         p.spheres.draw(p.batch, camera);
-    }
+    p.scenery.draw_solids(camera);
+    p.light.occlude(p.target, camera);
     // The solids and the overlay, then the pixels read back.
     return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
                         timings_);

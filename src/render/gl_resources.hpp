@@ -79,6 +79,8 @@ class RenderTarget {
     void begin();
     // Resolves the samples and reads the pixels back, rows top-down.
     Image read() const;
+    // The multisampled framebuffer (the passes that read its depth).
+    GLuint framebuffer() const { return msaa_.id(); }
 
   private:
     int width_, height_;

@@ -1,5 +1,6 @@
 #include "render/overlay.hpp"
 
+#include "render/palette.hpp"
 #include "render/text.hpp"
 
 #include <algorithm>
@@ -104,14 +105,13 @@ float body_size(int height) {
     return std::max(9.f, std::round(0.026f * float(height)));
 }
 
-const glm::vec4 text_colour{0.9f, 0.91f, 0.93f, 1.f};
-
 } // namespace
 
 Overlay::Overlay(const RenderSettings& s)
     : height_(s.height), body_px_(body_size(s.height)), title_px_(std::round(1.3f * body_px_)),
       label_(s.label), title_(s.title), caption_(s.caption), range_(s.range),
-      ticks_(round_ticks(s.range[0], s.range[1])) {
+      ticks_(round_ticks(s.range[0], s.range[1])), backdrop_(s),
+      text_colour_(palette(s.background).text), line_colour_(palette(s.background).bar_lines) {
     const std::string font = find_font(s.font, font_warning_);
     std::string face_warning;
     body_ = std::make_unique<TextFace>(font, int(body_px_), face_warning,
@@ -156,34 +156,30 @@ void Overlay::draw(const FlatPainter& painter, const Snapshot& frame, const Fram
     // Pixels, y down.
     const glm::mat4 pixels =
         glm::ortho(0.f, float(layout.width), float(layout.height), 0.f, -1.f, 1.f);
-    draw_backing(painter, pixels, layout);
+    draw_backing(layout);
     draw_colour_bar(painter, pixels, layout);
     draw_text(frame, pixels, layout);
 }
 
-void Overlay::draw_backing(const FlatPainter& painter, const glm::mat4& pixels,
-                           const FrameLayout& l) {
-    // The background over everything outside the scene's rectangle (and a
+void Overlay::draw_backing(const FrameLayout& l) {
+    // The backdrop over everything outside the scene's rectangle (and a
     // little room for the spheres on its edges): a 3D splash or a close
     // camera never runs under the bands' text.
     const float pad = 0.3f * body_px_;
     const float x0 = float(l.scene.x) - pad, y0 = float(l.scene.y) - pad;
     const float x1 = float(l.scene.right()) + pad, y1 = float(l.scene.bottom()) + pad;
     const float w = float(l.width), h = float(l.height);
-    triangles_.clear();
+    bands_.clear();
     auto rect = [&](float ax, float ay, float bx, float by) {
-        if (bx <= ax || by <= ay)
-            return;
-        for (const auto& [x, y] :
-             {std::pair{ax, ay}, {bx, ay}, {bx, by}, {ax, ay}, {bx, by}, {ax, by}})
-            triangles_.push_back({x, y, 0, -1});
+        if (bx > ax && by > ay)
+            bands_.push_back({ax, ay, bx - ax, by - ay});
     };
     rect(0, 0, w, y0);
     rect(0, y1, w, h);
     rect(0, y0, x0, y1);
     rect(x1, y0, w, y1);
-    painter.draw(triangles_, GL_TRIANGLES, pixels,
-                 {gl::background[0], gl::background[1], gl::background[2], 1.f});
+    backdrop_.draw(bands_);
+    glDisable(GL_DEPTH_TEST);
 }
 
 void Overlay::draw_colour_bar(const FlatPainter& painter, const glm::mat4& pixels,
@@ -203,7 +199,7 @@ void Overlay::draw_colour_bar(const FlatPainter& painter, const glm::mat4& pixel
         lines_.push_back({x1, y, 0, -1});
         lines_.push_back({x1 + 0.4f * body_px_, y, 0, -1});
     }
-    painter.draw(lines_, GL_LINES, pixels, {0.85f, 0.86f, 0.88f, 1.f});
+    painter.draw(lines_, GL_LINES, pixels, line_colour_);
 }
 
 void Overlay::draw_text(const Snapshot& frame, const glm::mat4& pixels, const FrameLayout& l) {
@@ -226,11 +222,11 @@ void Overlay::draw_text(const Snapshot& frame, const glm::mat4& pixels, const Fr
         const float x = title_.empty() ? float(l.top.x) : float(l.top.right()) - b.width(caption);
         b.append(caption, x, baseline, text_);
     }
-    text_painter_.draw(text_, b, pixels, text_colour);
+    text_painter_.draw(text_, b, pixels, text_colour_);
     if (!title_.empty()) {
         text_.clear();
         title_face_->append(title_, float(l.top.x), baseline, text_);
-        text_painter_.draw(text_, *title_face_, pixels, text_colour);
+        text_painter_.draw(text_, *title_face_, pixels, text_colour_);
     }
 }
 

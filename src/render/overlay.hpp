@@ -1,10 +1,11 @@
 #pragma once
 // The overlay: the colour bar with its ticks, values and title, a title line
 // and the caption, each in a band the layout reserves beside the scene
-// (OverlayRoom), on a backing of the background so nothing of the scene
+// (OverlayRoom), on a backing of the backdrop so nothing of the scene
 // runs under the text. Also the painter of flat lines and triangles that the
 // overlay and the scenery's outlines share.
 
+#include "render/backdrop.hpp"
 #include "render/camera.hpp"
 #include "render/gl_resources.hpp"
 #include "render/render_settings.hpp"
@@ -63,13 +64,14 @@ class Overlay {
     // Why the font was not the one asked for (empty: it was).
     const std::string& font_warning() const { return font_warning_; }
     bool font_from_file() const { return body_->from_font(); }
+    // The backdrop its bands are backed with, which the frame starts from.
+    const Backdrop& backdrop() const { return backdrop_; }
 
     // Over whatever is drawn, in the layout's bands: no depth test from here on.
     void draw(const FlatPainter& painter, const Snapshot& frame, const FrameLayout& layout);
 
   private:
-    void draw_backing(const FlatPainter& painter, const glm::mat4& pixels,
-                      const FrameLayout& layout);
+    void draw_backing(const FrameLayout& layout);
     void draw_colour_bar(const FlatPainter& painter, const glm::mat4& pixels,
                          const FrameLayout& layout);
     void draw_text(const Snapshot& frame, const glm::mat4& pixels, const FrameLayout& layout);
@@ -89,9 +91,12 @@ class Overlay {
     std::string font_warning_;
     std::unique_ptr<TextFace> body_, title_face_;
     TextPainter text_painter_;
+    Backdrop backdrop_;
+    glm::vec4 text_colour_, line_colour_;
     OverlayRoom room_;
     // Scratch reused from frame to frame.
     std::vector<OverlayVertex> lines_, triangles_;
+    std::vector<PixelRect> bands_;
     std::vector<TextVertex> text_;
 };
 

@@ -8,7 +8,8 @@ ParticleBatch::ParticleBatch(const RenderSettings& s, std::size_t groups)
     : field_(s.field == "velocity"  ? ParticleField::speed
              : s.field == "density" ? ParticleField::density
                                     : ParticleField::pressure),
-      radius_(s.radius), cull_buried_(s.cull_buried), cull_outside_view_(s.cull_outside_view),
+      radius_(s.radius), cull_buried_(s.cull_buried),
+      cull_outside_view_(s.cull_outside_view && !casts_shadows(s)),
       // A sphere whose every point is at least a little outside one plane
       // colours no pixel: the impostor's fragments all lie within its
       // silhouette, the mesh within the sphere. The margin covers the GPU's

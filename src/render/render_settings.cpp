@@ -179,6 +179,24 @@ RenderSettings make_render_settings(const Scene& scene) {
         r.camera_fixed = false;
     }
     r.cull_buried = scene.dimension == 3 && scene.render.cull_buried;
+    r.shadows = scene.render.shadows;
+    r.ambient_occlusion = scene.render.ambient_occlusion;
+    r.floor = scene.render.floor;
+    r.tank = scene.render.tank;
+    r.background = scene.render.background;
+    // The floor lies across gravity's largest component, on the side it
+    // pulls to; without gravity, under y.
+    if (scene.effects.gravity) {
+        const auto& g = scene.effects.gravity->acceleration;
+        int axis = -1;
+        for (int a = 0; a < scene.dimension; ++a)
+            if (g[a] != 0 && (axis < 0 || std::abs(g[a]) > std::abs(g[axis])))
+                axis = a;
+        if (axis >= 0) {
+            r.up = glm::dvec3(0);
+            r.up[axis] = g[axis] < 0 ? 1 : -1;
+        }
+    }
     return r;
 }
 

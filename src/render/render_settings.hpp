@@ -83,7 +83,19 @@ struct RenderSettings {
     double triangles_below_px = 12;
     // Skip particles whose sphere lies wholly outside the view: they colour
     // no pixel, so the frame is the same without them.
+    // Not with shadows (casts_shadows): a particle outside the view may
+    // shadow one inside it.
     bool cull_outside_view = true;
+    // Light and depth (docs/rendering.md, "Light and depth"); the first four
+    // act in 3D only.
+    // Off by default: on llvmpipe each costs more than a plain 10k frame
+    // (tests/bench/results/render_light.csv), past the 100 ms goal.
+    bool shadows = false;             // the key light's soft shadows
+    bool ambient_occlusion = false;   // screen-space ambient occlusion
+    bool floor = true;                // a floor under the domain
+    bool tank = true;                 // the domain's walls as faint glass
+    std::string background = "light"; // light | dark (palette.hpp)
+    glm::dvec3 up{0, 1, 0};           // unit, against gravity: the floor's normal
 };
 
 // The field's range when the scene sets none, from the scene's physics, the
@@ -96,6 +108,11 @@ struct RenderSettings {
 // least 1%.
 // `field` is velocity, density or pressure.
 std::array<double, 2> default_colour_range(const Scene& scene, std::string_view field);
+
+// Whether the key light casts shadows: 3D, render.shadows.
+inline bool casts_shadows(const RenderSettings& s) {
+    return s.dimension == 3 && s.shadows;
+}
 
 // Settings from the scene's render section; ranges the scene leaves open come
 // from the scene's physics, so colours mean the same in every frame.

@@ -1,8 +1,10 @@
 #include "render/scenery.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <embedded_shaders.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <utility>
 
 namespace sph {
 
@@ -124,46 +126,193 @@ std::vector<float> mesh_obstacle_triangles(const std::vector<SceneObstacle>& obs
     return out;
 }
 
-} // namespace
-
-Scenery::Scenery(const RenderSettings& s)
-    : dimension_(s.dimension), domain_min_(s.domain_min), domain_max_(s.domain_max),
-      behind_(float(-2 * s.radius)), obstacles_(s.obstacles), paddles_(s.paddles) {
-    const std::vector<float> solid =
-        mesh_obstacle_triangles(obstacles_, 0.5 * (s.domain_min + s.domain_max));
-    if (solid.empty())
-        return;
-    solid_program_ = gl::link_program(shaders::solid_vert, shaders::solid_frag, shaders::lighting);
-    solid_vao_ = gl::VertexArray::generate();
-    glBindVertexArray(solid_vao_.id());
-    solid_buffer_ = gl::Buffer::generate();
-    glBindBuffer(GL_ARRAY_BUFFER, solid_buffer_.id());
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(solid.size() * sizeof(float)), solid.data(),
+// A vertex array of (x, y, z, nx, ny, nz) vertices from `data`, as the solid
+// vertex shader reads them.
+void upload_with_normals(const gl::VertexArray& vao, const gl::Buffer& buffer,
+                         const std::vector<float>& data) {
+    glBindVertexArray(vao.id());
+    glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(),
                  GL_STATIC_DRAW);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
                           reinterpret_cast<void*>(3 * sizeof(float)));
-    solid_vertex_count_ = GLsizei(solid.size() / 6);
     glBindVertexArray(0);
+}
+
+// The box of half extents `e` around the origin, as triangles with their
+// outward normals, but for the face on the floor (along -up): the tank's
+// glass stands on the floor.
+std::vector<float> glass_faces(const glm::vec3& e, int up_axis, float up_sign) {
+    std::vector<float> out;
+    for (int a = 0; a < 3; ++a)
+        for (const float side : {-1.f, 1.f}) {
+            if (a == up_axis && side == -up_sign)
+                continue;
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            glm::vec3 normal(0);
+            normal[a] = side;
+            auto corner = [&](float u, float v) {
+                glm::vec3 p;
+                p[a] = side * e[a];
+                p[b] = u * e[b];
+                p[c] = v * e[c];
+                return p;
+            };
+            const glm::vec3 q[4] = {corner(-1, -1), corner(1, -1), corner(1, 1), corner(-1, 1)};
+            for (int k : {0, 1, 2, 0, 2, 3}) {
+                out.insert(out.end(), {q[k].x, q[k].y, q[k].z});
+                out.insert(out.end(), {normal.x, normal.y, normal.z});
+            }
+        }
+    return out;
+}
+
+} // namespace
+
+Scenery::Scenery(const RenderSettings& s)
+    : dimension_(s.dimension), domain_min_(s.domain_min), domain_max_(s.domain_max),
+      behind_(float(-2 * s.radius)), image_height_(s.height), palette_(palette(s.background)),
+      obstacles_(s.obstacles), paddles_(s.paddles) {
+    const glm::vec3 half(0.5 * (s.domain_max - s.domain_min));
+    reach_ = 1.02 * glm::length(glm::dvec3(half));
+    if (dimension_ == 3 && (s.floor || s.tank)) {
+        int up_axis = 1;
+        for (int a = 0; a < 3; ++a)
+            if (std::abs(s.up[a]) > 0.5)
+                up_axis = a;
+        const float up_sign = s.up[up_axis] < 0 ? -1.f : 1.f;
+        floor_up_ = glm::vec3(0);
+        floor_up_[up_axis] = up_sign;
+        // The floor: fully there out to a little past the domain's
+        // footprint, gone at three times that.
+        const glm::vec3 across = half - glm::dot(half, floor_up_) * floor_up_;
+        const float footprint = glm::length(across);
+        floor_fade_ = {1.1f * footprint, 3.f * footprint};
+        reach_ = std::max(reach_, 1.3 * double(footprint));
+        if (s.floor) {
+            const int b = (up_axis + 1) % 3, c = (up_axis + 2) % 3;
+            std::vector<float> quad;
+            for (const auto& [u, v] :
+                 {std::pair{-1.f, -1.f}, {1.f, -1.f}, {-1.f, 1.f}, {1.f, 1.f}}) {
+                glm::vec3 p(0);
+                p[up_axis] = -up_sign * half[up_axis];
+                p[b] = u * floor_fade_.y;
+                p[c] = v * floor_fade_.y;
+                quad.insert(quad.end(), {p.x, p.y, p.z});
+            }
+            floor_program_ =
+                gl::link_program(shaders::floor_vert, shaders::floor_frag, shaders::lighting);
+            floor_vao_ = gl::VertexArray::generate();
+            glBindVertexArray(floor_vao_.id());
+            floor_buffer_ = gl::Buffer::generate();
+            glBindBuffer(GL_ARRAY_BUFFER, floor_buffer_.id());
+            glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(quad.size() * sizeof(float)), quad.data(),
+                         GL_STATIC_DRAW);
+            glEnableVertexAttribArray(0);
+            glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+            glBindVertexArray(0);
+        }
+        if (s.tank) {
+            const std::vector<float> faces = glass_faces(half, up_axis, up_sign);
+            glass_program_ =
+                gl::link_program(shaders::solid_vert, shaders::glass_frag, shaders::lighting);
+            glass_vao_ = gl::VertexArray::generate();
+            glass_buffer_ = gl::Buffer::generate();
+            upload_with_normals(glass_vao_, glass_buffer_, faces);
+            glass_vertex_count_ = GLsizei(faces.size() / 6);
+        }
+    }
+    const std::vector<float> solid =
+        mesh_obstacle_triangles(obstacles_, 0.5 * (s.domain_min + s.domain_max));
+    if (solid.empty())
+        return;
+    solid_program_ = gl::link_program(shaders::solid_vert, shaders::solid_frag, shaders::lighting);
+    solid_vao_ = gl::VertexArray::generate();
+    solid_buffer_ = gl::Buffer::generate();
+    upload_with_normals(solid_vao_, solid_buffer_, solid);
+    solid_vertex_count_ = GLsizei(solid.size() / 6);
+}
+
+namespace {
+
+void set_camera(GLuint program, const Camera& camera) {
+    glUseProgram(program);
+    glUniformMatrix4fv(glGetUniformLocation(program, "u_view"), 1, GL_FALSE,
+                       glm::value_ptr(camera.view));
+    glUniformMatrix4fv(glGetUniformLocation(program, "u_projection"), 1, GL_FALSE,
+                       glm::value_ptr(camera.projection));
+}
+
+} // namespace
+
+void Scenery::draw_floor(const Camera& camera) const {
+    if (!floor_program_ || camera.orthographic)
+        return;
+    const GLuint program = floor_program_.id();
+    set_camera(program, camera);
+    sph::set_lighting(program, lighting_);
+    glUniform3fv(glGetUniformLocation(program, "u_top"), 1, glm::value_ptr(palette_.backdrop_top));
+    glUniform3fv(glGetUniformLocation(program, "u_bottom"), 1,
+                 glm::value_ptr(palette_.backdrop_bottom));
+    glUniform1f(glGetUniformLocation(program, "u_image_height"), float(image_height_));
+    glUniform2fv(glGetUniformLocation(program, "u_fade"), 1, glm::value_ptr(floor_fade_));
+    glUniform3fv(glGetUniformLocation(program, "u_floor_up"), 1, glm::value_ptr(floor_up_));
+    glEnable(GL_BLEND);
+    // Colour only: the frame stays opaque (a PNG with see-through edges
+    // would show whatever a viewer puts behind it).
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    glBindVertexArray(floor_vao_.id());
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisable(GL_BLEND);
+}
+
+void Scenery::draw_depth(const Camera& light) const {
+    if (solid_vertex_count_ == 0)
+        return;
+    set_camera(solid_program_.id(), light);
+    glBindVertexArray(solid_vao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, solid_vertex_count_);
+}
+
+void Scenery::draw_solids(const Camera& camera) const {
+    if (solid_vertex_count_ == 0 || camera.orthographic)
+        return;
+    const GLuint program = solid_program_.id();
+    set_camera(program, camera);
+    sph::set_lighting(program, lighting_);
+    glUniform3fv(glGetUniformLocation(program, "u_colour"), 1, glm::value_ptr(palette_.solid));
+    glBindVertexArray(solid_vao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, solid_vertex_count_);
+}
+
+void Scenery::draw_glass(const Camera& camera) const {
+    if (glass_vertex_count_ == 0 || camera.orthographic)
+        return;
+    const GLuint program = glass_program_.id();
+    set_camera(program, camera);
+    // A pale tint: reflections brighter than the backdrop, so the walls
+    // read as glass, not as smoked panes.
+    glUniform3f(glGetUniformLocation(program, "u_colour"), 0.97f, 0.98f, 1.f);
+    // Over what is drawn, hiding nothing drawn later.
+    glEnable(GL_BLEND);
+    // Colour only: the frame stays opaque (a PNG with see-through edges
+    // would show whatever a viewer puts behind it).
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    glDepthMask(GL_FALSE);
+    glBindVertexArray(glass_vao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, glass_vertex_count_);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
 }
 
 void Scenery::draw(const FlatPainter& painter, const Camera& camera, double time) {
     const bool flat = dimension_ == 2;
     const glm::mat4 clip = camera.projection * camera.view;
-    // Mesh obstacles, solid and lit like the particles, depth-tested with them.
-    if (solid_vertex_count_ > 0 && !camera.orthographic) {
-        const GLuint program = solid_program_.id();
-        glUseProgram(program);
-        glUniformMatrix4fv(glGetUniformLocation(program, "u_view"), 1, GL_FALSE,
-                           glm::value_ptr(camera.view));
-        glUniformMatrix4fv(glGetUniformLocation(program, "u_projection"), 1, GL_FALSE,
-                           glm::value_ptr(camera.projection));
-        glUniform3f(glGetUniformLocation(program, "u_colour"), 0.62f, 0.6f, 0.56f);
-        glBindVertexArray(solid_vao_.id());
-        glDrawArrays(GL_TRIANGLES, 0, solid_vertex_count_);
-    }
+    // The glass over the fluid and the solids.
+    draw_glass(camera);
 
     // The domain box, depth-tested so the fluid hides its far edges, and the
     // other obstacles.
@@ -172,15 +321,15 @@ void Scenery::draw(const FlatPainter& painter, const Camera& camera, double time
     append_edges(glm::vec3(domain_min_ - camera.origin), glm::vec3(domain_max_ - camera.origin),
                  camera.orthographic, lines_);
     append_obstacles(obstacles_, flat, camera.origin, behind_, lines_, fill_);
-    painter.draw(fill_, GL_TRIANGLES, clip, {0.3f, 0.32f, 0.36f, 1.f});
-    painter.draw(lines_, GL_LINES, clip, {0.55f, 0.58f, 0.62f, 1.f});
+    painter.draw(fill_, GL_TRIANGLES, clip, palette_.obstacle_fill);
+    painter.draw(lines_, GL_LINES, clip, palette_.box_lines);
     // Paddles in a warmer grey than the static solids: the parts that move.
     if (!paddles_.empty()) {
         lines_.clear();
         fill_.clear();
         append_paddles(paddles_, flat, time, camera.origin, behind_, lines_, fill_);
-        painter.draw(fill_, GL_TRIANGLES, clip, {0.45f, 0.38f, 0.3f, 1.f});
-        painter.draw(lines_, GL_LINES, clip, {0.78f, 0.66f, 0.5f, 1.f});
+        painter.draw(fill_, GL_TRIANGLES, clip, palette_.paddle_fill);
+        painter.draw(lines_, GL_LINES, clip, palette_.paddle_lines);
     }
 }
 

@@ -33,6 +33,10 @@ SpherePass::SpherePass(const RenderSettings& s, std::string_view impostor_define
     if (impostor_) {
         program_ = gl::link_program(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag,
                                     std::string(impostor_defines) + std::string(shaders::lighting));
+        depth_program_ =
+            gl::link_program(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag,
+                             "#define DEPTH_ONLY\n" + std::string(impostor_defines) +
+                                 std::string(shaders::lighting));
         make_outlines();
     } else {
         program_ = gl::link_program(shaders::sphere_mesh_vert, shaders::sphere_mesh_frag,
@@ -107,6 +111,7 @@ void SpherePass::set_uniforms(GLuint program, const Camera& camera) const {
     glUniform1i(glGetUniformLocation(program, "u_orthographic"), camera.orthographic);
     glUniform1i(glGetUniformLocation(program, "u_colour_map"), 0);
     glUniform2f(glGetUniformLocation(program, "u_range"), range_[0], range_[1]);
+    sph::set_lighting(program, lighting_);
 }
 
 void SpherePass::draw_outlines(Outline outline, std::size_t first, std::size_t count) const {
@@ -120,9 +125,17 @@ void SpherePass::draw_outlines(Outline outline, std::size_t first, std::size_t c
 }
 
 void SpherePass::draw(const ParticleBatch& batch, const Camera& camera) const {
+    draw_with(program_.id(), batch, camera);
+}
+
+void SpherePass::draw_depth(const ParticleBatch& batch, const Camera& light) const {
+    draw_with(impostor_ ? depth_program_.id() : program_.id(), batch, light);
+}
+
+void SpherePass::draw_with(GLuint program, const ParticleBatch& batch, const Camera& camera) const {
     if (batch.drawn() == 0)
         return;
-    set_uniforms(program_.id(), camera);
+    set_uniforms(program, camera);
     if (!impostor_) {
         glBindVertexArray(mesh_vao_.id());
         glDrawElementsInstanced(GL_TRIANGLES, mesh_index_count_, GL_UNSIGNED_INT, nullptr,

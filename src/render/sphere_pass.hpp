@@ -7,6 +7,7 @@
 
 #include "render/camera.hpp"
 #include "render/gl_resources.hpp"
+#include "render/lighting.hpp"
 #include "render/particle_batch.hpp"
 #include "render/render_settings.hpp"
 
@@ -33,6 +34,10 @@ class SpherePass {
     // Draws the uploaded batch's square_group (every sphere, for meshes) and
     // triangle_group; other groups are left to the caller.
     void draw(const ParticleBatch& batch, const Camera& camera) const;
+    // The same spheres' depth only, through `light` (the shadow map's pass).
+    void draw_depth(const ParticleBatch& batch, const Camera& light) const;
+    // The light the next draws use; by default lit as in 2D, no shadows.
+    void set_lighting(const Lighting& lighting) { lighting_ = lighting; }
 
     // For drawing a group with another program (the benchmark's variants):
     // the group's first instance in the buffer, the uniforms every sphere
@@ -40,6 +45,7 @@ class SpherePass {
     std::size_t first(std::size_t group) const { return first_[group]; }
     void set_uniforms(GLuint program, const Camera& camera) const;
     void draw_outlines(Outline outline, std::size_t first, std::size_t count) const;
+    void draw_with(GLuint program, const ParticleBatch& batch, const Camera& camera) const;
     GLuint instance_buffer() const { return instances_.id(); }
 
   private:
@@ -49,7 +55,9 @@ class SpherePass {
     bool impostor_;
     float radius_;
     std::array<float, 2> range_;
-    gl::Program program_; // the impostor's or the mesh's
+    gl::Program program_;       // the impostor's or the mesh's
+    gl::Program depth_program_; // the impostor's depth only; empty for meshes
+    Lighting lighting_;
     gl::Buffer instances_;
     std::size_t capacity_ = 0; // instances the buffer holds
     std::vector<std::size_t> first_;

@@ -424,7 +424,9 @@ void TextPainter::draw(const std::vector<TextVertex>& vertices, const TextFace& 
                        glm::value_ptr(transform));
     glUniform4fv(glGetUniformLocation(program_.id(), "u_colour"), 1, glm::value_ptr(colour));
     glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    // Colour only: the frame stays opaque (a PNG with see-through edges
+    // would show whatever a viewer puts behind it).
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(vertices.size()));
     glDisable(GL_BLEND);
 }

@@ -16,6 +16,7 @@
 //   build/sphclip_bench_render --png FOLDER          # ... and each row's frame
 //   build/sphclip_bench_render --counts 1000000 --backends egl   # a part of it
 //   build/sphclip_bench_render --tiny                # one small frame per case (CI)
+//   build/sphclip_bench_render --light --size 1920x1080   # light and depth's rows only
 #include "io/image_compare.hpp"
 #include "io/png_io.hpp"
 #include "render/frame_renderer.hpp"
@@ -99,6 +100,11 @@ struct Technique {
     double triangles_below_px = 0; // 0: squares only
     int samples = 4;
     bool defaults = false;
+    // Light and depth: off in the sphere techniques' rows (they compare the
+    // spheres alone), on in the rows named for them and in "default".
+    bool shadows = false;
+    bool ambient_occlusion = false;
+    bool light_row = false; // one of light and depth's rows (--light)
 };
 
 // The benchmark's own part of a technique: none for the renderer's.
@@ -178,6 +184,16 @@ std::string first_line_with(const char* path, const std::string& key) {
     return "";
 }
 
+// The process's resident memory, MB (llvmpipe's buffers and textures are
+// host memory, so they count).
+double resident_mb() {
+    std::ifstream in("/proc/self/status");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("VmRSS:", 0) == 0)
+            return std::stod(line.substr(6)) / 1024.0;
+    return 0;
+}
+
 std::string load_average() {
     std::ifstream in("/proc/loadavg");
     double one = 0, five = 0, fifteen = 0;
@@ -205,7 +221,8 @@ std::vector<std::string> split(const std::string& list) {
 } // namespace
 
 int main(int argc, char** argv) {
-    bool tiny = false;
+    bool tiny = false, light_only = false;
+    int size_w = 0, size_h = 0;
     std::string csv_path, png_folder, counts_arg, backends_arg = "egl,osmesa";
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
@@ -219,10 +236,15 @@ int main(int argc, char** argv) {
             counts_arg = argv[++k];
         else if (arg == "--backends" && k + 1 < argc)
             backends_arg = argv[++k];
-        else {
+        else if (arg == "--light")
+            light_only = true;
+        else if (arg == "--size" && k + 1 < argc &&
+                 std::sscanf(argv[++k], "%dx%d", &size_w, &size_h) == 2 && size_w > 0 &&
+                 size_h > 0) {
+        } else {
             fmt::print(stderr,
                        "usage: {} [--tiny] [--counts N,N] [--backends egl,osmesa] [--csv FILE] "
-                       "[--png FOLDER]\n",
+                       "[--png FOLDER] [--light] [--size WxH]\n",
                        argv[0]);
             return 2;
         }
@@ -243,7 +265,8 @@ int main(int argc, char** argv) {
     if (!png_folder.empty())
         std::filesystem::create_directories(png_folder);
 
-    const int width = tiny ? 320 : 1280, height = tiny ? 180 : 720;
+    const int width = size_w > 0 ? size_w : tiny ? 320 : 1280;
+    const int height = size_h > 0 ? size_h : tiny ? 180 : 720;
     std::vector<std::size_t> counts =
         tiny ? std::vector<std::size_t>{1000} : std::vector<std::size_t>{10000, 100000, 1000000};
     if (!counts_arg.empty()) {
@@ -284,15 +307,21 @@ int main(int argc, char** argv) {
         {.name = "all flat quads", .flat_below_px = 1e9},
         {.name = "all flat quads sorted", .flat_below_px = 1e9, .sort = true},
         {.name = "all flat points", .flat_below_px = 1e9, .flat_as_points = true},
-        {.name = "default", .defaults = true},
+        {.name = "default", .defaults = true, .light_row = true},
+        {.name = "shadows", .shadows = true, .light_row = true},
+        {.name = "ambient occlusion", .ambient_occlusion = true, .light_row = true},
+        {.name = "shadows and ambient occlusion",
+         .shadows = true,
+         .ambient_occlusion = true,
+         .light_row = true},
         {.name = "seed: mesh", .spheres = "mesh", .skip_buried = false, .cull_view = false},
         {.name = "mesh", .spheres = "mesh"},
     };
 
     emit("backend,layout,particles,technique,spheres,skip_buried,cull_view,flat_below_px,"
          "flat_as,sorted,outline,samples,drawn,flat,outside_view,width,height,"
-         "ms_per_frame,fps,cpu_ms,fill_ms,draw_ms,readback_ms,"
-         "mean_diff_vs_raycast,different_pct_vs_raycast,match_vs_raycast");
+         "shadows,ambient_occlusion,ms_per_frame,fps,cpu_ms,fill_ms,draw_ms,readback_ms,"
+         "mean_diff_vs_raycast,different_pct_vs_raycast,match_vs_raycast,resident_mb");
     const char* layouts[] = {"block", "close-up", "scattered"};
     for (std::size_t n : counts)
         for (const char* layout : layouts) {
@@ -317,6 +346,10 @@ int main(int argc, char** argv) {
                         continue;
                     if (mesh && (n > 100000 || !block))
                         continue;
+                    if (light_only && !is_reference && !t.light_row)
+                        continue;
+                    if (t.light_row && !t.defaults && close_up)
+                        continue;
                     if (tiny && !is_reference && !is_default && !mesh && t.flat_below_px != 4 &&
                         t.cull_view)
                         continue;
@@ -331,6 +364,8 @@ int main(int argc, char** argv) {
                     r.domain_max = glm::dvec3(box);
                     r.cull_buried = block && t.skip_buried;
                     if (!t.defaults) {
+                        r.shadows = t.shadows;
+                        r.ambient_occlusion = t.ambient_occlusion;
                         r.cull_outside_view = t.cull_view;
                         r.triangles_below_px = t.triangles_below_px;
                         r.samples = t.samples;
@@ -387,16 +422,19 @@ int main(int argc, char** argv) {
                     const bool flat = v.flat_below_px > 0 && r.spheres == "impostor";
                     const double ms = median(row.ms);
                     emit(fmt::format(
-                        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.2f},{:.1f},"
-                        "{:.1f},{:.1f},{:.1f},{}",
+                        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.2f},{:."
+                        "1f},"
+                        "{:.1f},{:.1f},{:.1f},{},{:.0f}",
                         backend, layout, n, t.name, t.spheres, r.cull_buried ? "yes" : "no",
                         r.cull_outside_view ? "yes" : "no",
                         flat ? fmt::format("{:g}", v.flat_below_px) : "",
                         flat ? (v.flat_as_points ? "points" : "quads") : "",
                         v.sort_front_to_back ? "yes" : "no", outline_name(r), r.samples,
-                        row.drawn(), row.flat(), row.outside_view(), width, height, ms, 1e3 / ms,
+                        row.drawn(), row.flat(), row.outside_view(), width, height,
+                        r.shadows && r.dimension == 3 ? "on" : "off",
+                        r.ambient_occlusion && r.dimension == 3 ? "on" : "off", ms, 1e3 / ms,
                         median(row.cpu_ms), median(row.fill_ms), median(row.draw_ms),
-                        median(row.readback_ms), versus));
+                        median(row.readback_ms), versus, resident_mb()));
                     if (!png_folder.empty()) {
                         std::string name = fmt::format("{}_{}_{}_{}", backend, layout, n, t.name);
                         for (char& c : name)

@@ -3,6 +3,7 @@
 #include "render/camera.hpp"
 #include "render/frame_end.hpp"
 #include "render/gl_resources.hpp"
+#include "render/light_rig.hpp"
 #include "render/overlay.hpp"
 #include "render/particle_batch.hpp"
 #include "render/scenery.hpp"
@@ -75,12 +76,14 @@ struct VariantRenderer::Parts {
     std::array<std::size_t, groups> keyed{};
     std::vector<float> sorted;
     std::vector<std::uint32_t> class_starts;
+    LightRig light;
 
     Parts(const RenderSettings& s, const DrawVariant& v)
         : target(s.width, s.height, s.samples),
           colour_map(gl::make_colour_map_texture(s.colour_map)), outline_rule(s), batch(s, groups),
           spheres(s, v.conservative_depth ? "#define CONSERVATIVE_DEPTH\n" : ""), scenery(s),
-          overlay(s), layout(layout_frame(s.width, s.height, overlay.room(), scene_aspect(s))) {
+          overlay(s), layout(layout_frame(s.width, s.height, overlay.room(), scene_aspect(s))),
+          light(s, scenery.reach()) {
         if (v.flat_below_px > 0) {
             const std::string defines = v.flat_as_points ? "#define POINTS\n" : "";
             disc_program = gl::link_program(shaders::sphere_disc_vert, shaders::sphere_disc_frag,
@@ -139,9 +142,19 @@ Image VariantRenderer::render(const Snapshot& frame) {
             sort_by_depth(p.batch.instances(g), p.depth_keys[g], p.sorted, p.class_starts);
     timings_.fill_seconds = seconds_since(start);
 
-    p.target.begin();
-    gl::bind_colour_map(p.colour_map);
+    // Lit, shadowed and occluded as the renderer's frames are.
     p.spheres.upload(p.batch);
+    const Lighting lighting =
+        p.light.light(camera, {[&](const Camera& light) { p.spheres.draw_depth(p.batch, light); },
+                               [&](const Camera& light) {
+                                   p.scenery.draw_depth(light);
+                               }});
+    p.spheres.set_lighting(lighting);
+    p.scenery.set_lighting(lighting);
+    p.target.begin();
+    p.overlay.backdrop().draw();
+    gl::bind_colour_map(p.colour_map);
+    p.scenery.draw_floor(camera);
     p.spheres.draw(p.batch, camera);
     if (const std::size_t flat = p.batch.count(flat_group); flat > 0) {
         const GLuint program = p.disc_program.id();
@@ -155,6 +168,8 @@ Image VariantRenderer::render(const Snapshot& frame) {
             p.spheres.draw_outlines(Outline::triangle, p.spheres.first(flat_group), flat);
         }
     }
+    p.scenery.draw_solids(camera);
+    p.light.occlude(p.target, camera);
     return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
                         timings_);
 }

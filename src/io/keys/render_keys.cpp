@@ -73,6 +73,31 @@ const KeyTable<Scene::Render>& render_keys() {
          .doc = "Font file (TrueType/OpenType) for the overlay's text; a file that is not a "
                 "regular file of at most 64 MiB that FreeType reads is refused.",
          .absent = "DejaVu Sans (fonts-dejavu-core), else fc-match's, else a bitmap font"},
+        {.path = "shadows",
+         .field = &S::shadows,
+         .doc = "3D: the key light casts soft shadows (a shadow map filtered over about a "
+                "particle's radius) on the fluid, the floor and the solids; 2D scenes have "
+                "none. Off by default: it costs about as much as the spheres "
+                "themselves on llvmpipe (docs/rendering.md)."},
+        {.path = "ambient_occlusion",
+         .field = &S::ambient_occlusion,
+         .doc = "3D: screen-space ambient occlusion darkens creases, contact with the floor and "
+                "walls, and the hollows of a splash, over about four particle radii; 2D scenes "
+                "have none. Off by default: two passes over the image, as costly as the "
+                "spheres on llvmpipe (docs/rendering.md)."},
+        {.path = "floor",
+         .field = &S::floor,
+         .doc = "3D: a matte floor under the domain (against gravity; y without it) that "
+                "receives the shadows and fades into the backdrop."},
+        {.path = "tank",
+         .field = &S::tank,
+         .doc = "3D: the domain's walls drawn as faint glass (more opaque at grazing angles) "
+                "besides its edges; false: the edges only."},
+        {.path = "background",
+         .field = &S::background,
+         .doc = "The backdrop and overlay palette: light (a pale grey gradient, where every "
+                "colour map's dark end stays visible) or dark (near-black, light text).",
+         .choices = {"light", "dark"}},
         {.path = "backend",
          .field = &S::backend,
          .doc = "Headless GL context.",

@@ -9,7 +9,6 @@
 
 namespace sph {
 
-
 std::vector<float> particle_scalars(const Snapshot& frame, std::string_view field) {
     const std::size_t n = frame.size();
     const int dim = frame.dimension;

@@ -28,6 +28,14 @@
 namespace {
 
 namespace fs = std::filesystem;
+
+// A small 2D tank: 36 particles, quick frames.
+const std::string small_tank = R"({
+    "domain": {"min": [0, 0], "max": [0.1, 0.1]},
+    "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
+    "render": {"size": [64, 64]},
+    "duration": 0.05, "fps": 40
+})";
 using sph::test::read_text;
 using sph::test::run_sphclip;
 using sph::test::TempFolder;
@@ -259,11 +267,7 @@ TEST_CASE("inputs: command-line values that cannot be meant are refused with exi
           "the key",
           "[contract][inputs]") {
     TempFolder tmp;
-    write_text(tmp / "scene.json", R"({
-        "domain": {"min": [0, 0], "max": [0.1, 0.1]},
-        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
-        "duration": 0.05, "fps": 40
-    })");
+    write_text(tmp / "scene.json", small_tank);
     const auto refused = [&](const std::vector<std::string>& extra,
                              const std::vector<std::string>& words) {
         std::vector<std::string> args{"run",      (tmp / "scene.json").string(),
@@ -293,11 +297,7 @@ TEST_CASE("inputs: command-line values that cannot be meant are refused with exi
 TEST_CASE("inputs: control characters in a value are shown escaped, the whole message kept",
           "[contract][inputs]") {
     TempFolder tmp;
-    write_text(tmp / "scene.json", R"({
-        "domain": {"min": [0, 0], "max": [0.1, 0.1]},
-        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
-        "duration": 0.05, "fps": 40
-    })");
+    write_text(tmp / "scene.json", small_tank);
     for (const std::string& name :
          {std::string(R"("ab\u0000cd")"), std::string(R"("ab\u001b[31mcd")")}) {
         INFO(name);
@@ -334,14 +334,10 @@ TEST_CASE("inputs: a render.size the OpenGL context cannot draw is refused befor
     // is within the limits but cannot be completed: it used to fail at the
     // first frame with exit 1, after run.json and stats.csv were written.
     TempFolder tmp;
-    write_text(tmp / "scene.json", R"({
-        "domain": {"min": [0, 0], "max": [0.1, 0.1]},
-        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
-        "render": {"size": [16384, 16384]},
-        "duration": 0.05, "fps": 40
-    })");
-    const auto result = run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--backend",
-                                          "osmesa", "--out", (tmp / "out").string()});
+    write_text(tmp / "scene.json", small_tank);
+    const auto result =
+        run_sphclip(tmp, {"run", (tmp / "scene.json").string(), "--backend", "osmesa", "--out",
+                          (tmp / "out").string(), "--set", "render.size=[16384,16384]"});
     INFO(result.output);
     CHECK(result.exit_code == 2);
     CHECK(contains(result.output, "render.size: the OpenGL renderer (osmesa"));
@@ -353,12 +349,7 @@ TEST_CASE("inputs: a render.font that is a pipe, a device or not a font is refus
           "anything is written",
           "[contract][inputs]") {
     TempFolder tmp;
-    write_text(tmp / "scene.json", R"({
-        "domain": {"min": [0, 0], "max": [0.1, 0.1]},
-        "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
-        "render": {"size": [64, 64]},
-        "duration": 0.05, "fps": 40
-    })");
+    write_text(tmp / "scene.json", small_tank);
     REQUIRE(::mkfifo((tmp / "font.fifo").c_str(), 0644) == 0);
     write_text(tmp / "notes.ttf", "not a font");
     // The FIFO used to block the run for ever (open() restarts after

@@ -7,6 +7,7 @@
 #include "io/scene_setup.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+#include "render/palette.hpp"
 #include "sph/boundaries/obstacles.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
@@ -509,18 +510,29 @@ TEST_CASE("the renderer draws obstacles", "[obstacles]") {
     auto fill_pixels = [&](const RenderSettings& settings) {
         FrameRenderer renderer(settings);
         const Image image = renderer.render(frame);
+        // The fill's colour is the palette's, as written to the image.
+        const glm::vec4 fill = palette(settings.background).obstacle_fill;
+        const auto channel = [&](int c) {
+            return int(std::lround(255.f * fill[c]));
+        };
         std::size_t count = 0;
         for (std::size_t p = 0; p + 3 < image.rgba.size(); p += 4)
-            count += std::abs(image.rgba[p] - 77) <= 2 && std::abs(image.rgba[p + 1] - 82) <= 2 &&
-                     std::abs(image.rgba[p + 2] - 92) <= 2;
+            count += std::abs(image.rgba[p] - channel(0)) <= 2 &&
+                     std::abs(image.rgba[p + 1] - channel(1)) <= 2 &&
+                     std::abs(image.rgba[p + 2] - channel(2)) <= 2;
         return count;
     };
     RenderSettings settings = make_render_settings(scene);
     REQUIRE(settings.obstacles.size() == 1);
     // The box is 0.04 m x 0.03 m at about 1,145 px/m: 46 x 34 px.
-    CHECK(fill_pixels(settings) > 1000);
-    settings.obstacles.clear();
-    CHECK(fill_pixels(settings) < 10);
+    for (const char* background : {"light", "dark"}) {
+        INFO(background);
+        settings.background = background;
+        CHECK(fill_pixels(settings) > 1000);
+        RenderSettings without = settings;
+        without.obstacles.clear();
+        CHECK(fill_pixels(without) < 10);
+    }
 }
 
 TEST_CASE("the shipped obstacle scene loads with SPHERIC benchmark 2's geometry", "[obstacles]") {

@@ -10,6 +10,7 @@
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/sphere_geometry.hpp"
+#include "support/golden_frames.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>
@@ -21,64 +22,18 @@
 #include <unistd.h>
 
 using namespace sph;
+using sph::test::check_against_golden;
+using sph::test::render_scene;
 namespace fs = std::filesystem;
 
 namespace {
 
-// A small block moving right, coloured by speed with some variety.
+// The spheres style's tiny scene: impostors, or the seed's meshes.
 Scene tiny_scene(int dimension, const std::string& spheres = "impostor",
                  const std::vector<Override>& more = {}) {
-    std::vector<Override> o{{"render.size", "[320,180]"}, {"render.spheres", spheres}};
+    std::vector<Override> o{{"render.spheres", spheres}};
     o.insert(o.end(), more.begin(), more.end());
-    if (dimension == 2) {
-        o.push_back({"domain.max", "[0.1,0.06]"});
-        o.push_back({"fluid.spacing", "0.004"});
-        o.push_back({"fluid.blocks", R"([{"min":[0,0],"max":[0.04,0.04],"velocity":[0.4,0]},
-                                         {"min":[0.06,0.03],"max":[0.08,0.05],"velocity":[0,-1]}])"});
-    } else {
-        o.push_back({"dimension", "3"});
-        o.push_back({"domain.max", "[0.1,0.06,0.05]"});
-        o.push_back({"fluid.spacing", "0.005"});
-        o.push_back({"fluid.blocks",
-                     R"([{"min":[0,0,0],"max":[0.04,0.04,0.05],"velocity":[0.4,0,0]},
-                         {"min":[0.06,0.03,0.01],"max":[0.08,0.05,0.03],"velocity":[0,-1,0]}])"});
-    }
-    return default_scene(o);
-}
-
-template <int D>
-Snapshot initial_snapshot(const Scene& scene) {
-    auto sim = make_simulation<D>(scene);
-    sim.update_fields();
-    Snapshot s;
-    s.frame = 0;
-    s.time = 0;
-    s.stats = measure_frame(sim.params(), sim.state());
-    copy_fields(sim.state(), s);
-    return s;
-}
-
-Image render_scene(const Scene& scene, std::string_view backend) {
-    auto context = make_gl_context(backend);
-    FrameRenderer renderer(make_render_settings(scene));
-    return scene.dimension == 2 ? renderer.render(initial_snapshot<2>(scene))
-                                : renderer.render(initial_snapshot<3>(scene));
-}
-
-void check_against_golden(const Image& image, const std::string& name) {
-    const fs::path golden = fs::path(SPHCLIP_SOURCE_DIR) / "tests" / "golden" / (name + ".png");
-    if (std::getenv("SPHCLIP_UPDATE_GOLDEN")) {
-        fs::create_directories(golden.parent_path());
-        write_png(golden, image);
-        WARN("rewrote " << golden);
-    }
-    REQUIRE(fs::exists(golden));
-    const CompareResult result = compare_images(read_png(golden), image, CompareOptions{});
-    INFO(name << ": mean difference " << result.mean_difference << ", different "
-              << result.different_percent << "%");
-    if (!result.match)
-        write_png(fs::temp_directory_path() / (name + "_failed.png"), image);
-    CHECK(result.match);
+    return test::tiny_scene(dimension, o);
 }
 
 } // namespace

@@ -12,6 +12,7 @@
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/surface/reconstruct.hpp"
+#include "support/golden_frames.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
 
@@ -220,53 +221,7 @@ TEST_CASE("the .ply is binary little-endian with the bytes its header promises",
 namespace {
 
 Scene tiny_surface_scene(int dimension) {
-    std::vector<Override> o{{"render.size", "[320,180]"}, {"render.style", "surface"}};
-    if (dimension == 2) {
-        o.push_back({"domain.max", "[0.1,0.06]"});
-        o.push_back({"fluid.spacing", "0.004"});
-        o.push_back({"fluid.blocks", R"([{"min":[0,0],"max":[0.04,0.04],"velocity":[0.4,0]},
-                                         {"min":[0.06,0.03],"max":[0.08,0.05],"velocity":[0,-1]}])"});
-    } else {
-        o.push_back({"dimension", "3"});
-        o.push_back({"domain.max", "[0.1,0.06,0.05]"});
-        o.push_back({"fluid.spacing", "0.005"});
-        o.push_back({"fluid.blocks",
-                     R"([{"min":[0,0,0],"max":[0.04,0.04,0.05],"velocity":[0.4,0,0]},
-                         {"min":[0.06,0.03,0.01],"max":[0.08,0.05,0.03],"velocity":[0,-1,0]}])"});
-    }
-    return default_scene(o);
-}
-
-template <int D>
-Snapshot first_frame(const Scene& scene) {
-    auto sim = make_simulation<D>(scene);
-    sim.update_fields();
-    Snapshot s;
-    s.stats = measure_frame(sim.params(), sim.state());
-    copy_fields(sim.state(), s);
-    return s;
-}
-
-Image render_surface(const Scene& scene, std::string_view backend) {
-    auto context = make_gl_context(backend);
-    FrameRenderer renderer(make_render_settings(scene));
-    return scene.dimension == 2 ? renderer.render(first_frame<2>(scene))
-                                : renderer.render(first_frame<3>(scene));
-}
-
-void check_golden(const Image& image, const std::string& name) {
-    const fs::path golden = fs::path(SPHCLIP_SOURCE_DIR) / "tests" / "golden" / (name + ".png");
-    if (std::getenv("SPHCLIP_UPDATE_GOLDEN")) {
-        write_png(golden, image);
-        WARN("rewrote " << golden);
-    }
-    REQUIRE(fs::exists(golden));
-    const CompareResult result = compare_images(read_png(golden), image, CompareOptions{});
-    INFO(name << ": mean difference " << result.mean_difference << ", different "
-              << result.different_percent << "%");
-    if (!result.match)
-        write_png(fs::temp_directory_path() / (name + "_failed.png"), image);
-    CHECK(result.match);
+    return test::tiny_scene(dimension, {{"render.style", "surface"}});
 }
 
 } // namespace
@@ -279,12 +234,12 @@ TEST_CASE("surface frames: EGL and OSMesa agree pixel for pixel and match the go
     for (int dim : dims) {
         INFO(dim << "D");
         const Scene scene = tiny_surface_scene(dim);
-        const Image egl = render_surface(scene, "egl");
-        const Image osmesa = render_surface(scene, "osmesa");
+        const Image egl = test::render_scene(scene, "egl");
+        const Image osmesa = test::render_scene(scene, "osmesa");
         REQUIRE(egl.width == osmesa.width);
         CHECK(egl.rgba == osmesa.rgba);
-        check_golden(egl, dim == 2 ? "tiny_surface_2d" : "tiny_surface_3d");
-        check_golden(osmesa, dim == 2 ? "tiny_surface_2d" : "tiny_surface_3d");
+        test::check_against_golden(egl, dim == 2 ? "tiny_surface_2d" : "tiny_surface_3d");
+        test::check_against_golden(osmesa, dim == 2 ? "tiny_surface_2d" : "tiny_surface_3d");
     }
 }
 

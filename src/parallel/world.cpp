@@ -10,9 +10,9 @@ namespace sph::parallel {
 
 namespace {
 
+#ifdef SPHCLIP_HAVE_MPI
 bool active = false;
 
-#ifdef SPHCLIP_HAVE_MPI
 // Set by the starters in every process they start: Open MPI's mpirun,
 // PMIx and PMI-2 based ones (Slurm's srun, MPICH's Hydra).
 bool launched_by_mpi_starter() {

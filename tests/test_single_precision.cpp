@@ -1,4 +1,5 @@
-// wcsph's single-precision cell passes (src/sph/single_precision/cell_passes.hpp)
+// wcsph's single-precision cell passes (src/sph/single_precision/cell_passes.hpp),
+// in every instruction-set variant this binary holds and this processor runs,
 // against the double passes over neighbour lists, on a flowing state with
 // walls and a moving paddle: the same density and accelerations to float's
 // round-off, each viscosity's share included; and the scene's
@@ -12,9 +13,10 @@
 #include "sph/equation_of_state.hpp"
 #include "sph/neighbours/sorted_grid.hpp"
 #include "sph/pressure_acceleration.hpp"
-#include "sph/single_precision/cell_passes.hpp"
+#include "sph/single_precision/single_passes.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>
@@ -64,9 +66,18 @@ Real largest_difference(const std::vector<Vec<D>>& a, const std::vector<Vec<D>>&
     return m;
 }
 
+// SPHCLIP_SIMD set for the scope: the passes made meanwhile are that variant's.
+class PinnedVariant {
+  public:
+    explicit PinnedVariant(std::string_view variant) {
+        setenv("SPHCLIP_SIMD", std::string(variant).c_str(), 1);
+    }
+    ~PinnedVariant() { unsetenv("SPHCLIP_SIMD"); }
+};
+
 template <int D>
-void check_against_double(const std::string& kernel_name) {
-    INFO(D << "D, " << kernel_name);
+void check_against_double(const std::string& kernel_name, std::string_view variant) {
+    INFO(D << "D, " << kernel_name << ", variant " << variant);
     auto sim = make_simulation<D>(flowing_scene<D>(kernel_name, "double"));
     for (int k = 0; k < 150; ++k)
         sim.step();
@@ -96,9 +107,11 @@ void check_against_double(const std::string& kernel_name) {
             compute_pressure_tait(params, in_double);
             // Single, over cells.
             State<D> in_single = sim.state();
-            CellPasses<D> cells;
+            const PinnedVariant pinned(variant);
+            const auto passes = make_single_passes<D>();
+            SinglePasses<D>& cells = *passes;
             cells.find_cells(in_single.position, walls, params.h);
-            cells.density(params, kernel, walls, in_single);
+            cells.density(params, params.kernel, walls, in_single);
             Real worst_density = 0;
             for (std::size_t i = 0; i < in_double.size(); ++i)
                 worst_density = std::max(worst_density,
@@ -113,7 +126,7 @@ void check_against_double(const std::string& kernel_name) {
             for (const auto& set : sets) {
                 compute_pressure_acceleration(params, kernel, neighbours, walls, wall_neighbours,
                                               set, pressure_term, in_double);
-                cells.pressure_acceleration(params, kernel, walls, set, in_single);
+                cells.pressure_acceleration(params, params.kernel, walls, set, in_single);
                 doubles.push_back(in_double.acceleration);
                 singles.push_back(in_single.acceleration);
             }
@@ -141,10 +154,44 @@ void check_against_double(const std::string& kernel_name) {
 } // namespace
 
 TEST_CASE("single-precision cell passes agree with the double passes", "[single]") {
-    for (const char* kernel : {"cubic_spline", "wendland_c2"}) {
-        check_against_double<2>(kernel);
-        check_against_double<3>(kernel);
+    int tried = 0;
+    for (const std::string_view variant : simd_variants()) {
+        if (!simd_variant_runs(variant))
+            continue;
+        ++tried;
+        for (const char* kernel : {"cubic_spline", "wendland_c2"}) {
+            check_against_double<2>(kernel, variant);
+            check_against_double<3>(kernel, variant);
+        }
     }
+    CHECK(tried >= 1);
+}
+
+TEST_CASE("the widest variant this processor runs is the default; SPHCLIP_SIMD pins one",
+          "[single]") {
+    const auto variants = simd_variants();
+    REQUIRE(!variants.empty());
+    // The last is the build's own baseline, which every processor it runs on runs.
+    CHECK(simd_variant_runs(variants.back()));
+    std::string_view widest;
+    for (const auto v : variants)
+        if (widest.empty() && simd_variant_runs(v))
+            widest = v;
+    CHECK(simd_variant() == widest);
+    {
+        const PinnedVariant pinned(variants.back());
+        CHECK(simd_variant() == variants.back());
+    }
+    {
+        const PinnedVariant pinned("avx1024");
+        CHECK_THROWS_WITH(simd_variant(), Catch::Contains("SPHCLIP_SIMD=avx1024") &&
+                                              Catch::Contains(std::string(variants.back())));
+    }
+    for (const auto v : variants)
+        if (!simd_variant_runs(v)) {
+            const PinnedVariant pinned(v);
+            CHECK_THROWS_WITH(simd_variant(), Catch::Contains("cannot run"));
+        }
 }
 
 TEST_CASE("solver.precision: auto picks single where it can run, single says why not", "[single]") {

@@ -1,5 +1,6 @@
 #include "cli/build_info.hpp"
 
+#include "sph/single_precision/single_passes.hpp"
 #include "sphclip_build_info.hpp"
 
 #include <ctime>
@@ -61,7 +62,9 @@ nlohmann::json build_json() {
             {"build_type", SPHCLIP_BUILD_TYPE},
             {"flags", SPHCLIP_BUILD_FLAGS},
             {"arch", SPHCLIP_BUILD_ARCH},
-            {"instruction_sets", built_instruction_sets()}};
+            {"instruction_sets", built_instruction_sets()},
+            {"simd_variants", std::vector<std::string>(simd_variants().begin(),
+                                                       simd_variants().end())}};
 }
 
 std::string cpu_model(const std::string& cpuinfo_text) {
@@ -92,8 +95,17 @@ nlohmann::json machine_json() {
     std::stringstream text;
     if (in)
         text << in.rdbuf();
+    // The single-precision passes' variant on this processor (SPHCLIP_SIMD
+    // was checked before the run started).
+    std::string variant;
+    try {
+        variant = simd_variant();
+    } catch (const std::exception&) {
+        variant = "unknown";
+    }
     return {{"cpu_model", cpu_model(text.str())},
-            {"logical_cpus", std::thread::hardware_concurrency()}};
+            {"logical_cpus", std::thread::hardware_concurrency()},
+            {"simd_variant", variant}};
 }
 
 std::string utc_iso8601(std::chrono::system_clock::time_point time) {

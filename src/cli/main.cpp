@@ -10,6 +10,7 @@
 #include "cli/stop_signals.hpp"
 #include "cli/study_command.hpp"
 #include "cli/validate_command.hpp"
+#include "cli/wait_policy.hpp"
 #include "io/input_error.hpp"
 #include "parallel/world.hpp"
 #include "render/gl_context.hpp"
@@ -59,6 +60,8 @@ void print_keys(bool markdown) {
 } // namespace
 
 int main(int argc, char** argv) {
+    // Before any thread or MPI exists: it may start the program again.
+    sph::apply_wait_policy(argv);
     // Under mpirun, MPI first (docs/mpi.md): its start-up installs signal
     // handlers of its own, which ours then replace.
     const sph::parallel::Session mpi(&argc, &argv);

@@ -15,6 +15,7 @@
 #include "render/gl_context.hpp"
 #include "render/render_settings.hpp"
 #include "render/surface/reconstruct.hpp"
+#include "sph/single_precision/single_passes.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -208,6 +209,13 @@ int run_command(const RunOptions& given) {
         options.scene_file_absolute = fs::absolute(*options.scene).lexically_normal().string();
     if (options.fast_preview)
         make_fast_preview(scene);
+    // A variant pinned by the environment that cannot run here stops the run
+    // now, not at its first single-precision step.
+    try {
+        simd_variant();
+    } catch (const std::runtime_error& e) {
+        throw InputError("environment", "SPHCLIP_SIMD", e.what());
+    }
     if (scene.dimension == 3 && !surface_3d_available() &&
         std::find(options.exports.begin(), options.exports.end(), "surface") !=
             options.exports.end())

@@ -1,4 +1,3 @@
-#pragma once
 // The weakly compressible solver's density and pressure passes in single
 // precision, a grid cell at a time: `solver.precision` "single" (docs/solvers.md,
 // "Single precision").
@@ -29,22 +28,27 @@
 // and, x_ii being 0, nothing to its acceleration. That needs a kernel whose
 // gradient is finite at r = 0 (smooth_at_origin: not the seed's spiky one).
 
-#include "sph/boundaries/boundary_particles.hpp"
-#include "sph/headroom.hpp"
-#include "sph/neighbours/cell_neighbourhoods.hpp"
-#include "sph/neighbours/neighbour_list.hpp"
-#include "sph/pressure_acceleration.hpp"
+// This file is the body of one variant: a translation unit includes it once,
+// after single_passes.hpp and inside its `#pragma GCC target` region, with
+// SPHCLIP_SIMD_VARIANT naming the variant's namespace (cell_passes_*.cpp).
+// It includes nothing itself: a header first read here would be compiled for
+// the variant's instructions (single_passes.hpp says why that matters).
+#ifndef SPHCLIP_SIMD_VARIANT
+#error "cell_passes.hpp is included by the cell_passes_*.cpp variants only"
+#endif
+#include "sph/single_precision/single_passes.hpp"
 
-#include <array>
-#include <cmath>
-#include <cstring>
-#include <omp.h>
-#include <vector>
+namespace sph::SPHCLIP_SIMD_VARIANT {
 
-namespace sph {
-
-// Floats in one vector register of the target: the cell loops' width.
-inline constexpr std::uint32_t float_lanes = 2 * simd_lanes;
+// Floats in one vector register of the variant: the cell loops' width. The
+// target region defines the instruction sets' macros for what it enables.
+#if defined(__AVX512F__)
+inline constexpr std::uint32_t float_lanes = 16;
+#elif defined(__AVX__)
+inline constexpr std::uint32_t float_lanes = 8;
+#else
+inline constexpr std::uint32_t float_lanes = 4;
+#endif
 static_assert(float_lanes <= SortedGrid<2>::sorted_tail);
 
 template <int D>
@@ -358,4 +362,49 @@ class CellPasses {
     std::vector<Buffers> buffers_;
 };
 
-} // namespace sph
+// The variant behind the interface: the kernel chosen by name here, so that
+// each kernel's loops are this variant's.
+template <int D>
+class Passes final : public SinglePasses<D> {
+  public:
+    void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
+                    Real radius) override {
+        cells_.find_cells(fluid, boundary, radius);
+    }
+    void density(const Params<D>& params, KernelKind kind, const BoundaryParticles<D>* boundary,
+                 State<D>& state) override {
+        with_smooth_kernel(kind, params.h, [&](const auto& kernel) {
+            cells_.density(params, kernel, boundary, state);
+        });
+    }
+    void pressure_acceleration(const Params<D>& params, KernelKind kind,
+                               const BoundaryParticles<D>* boundary,
+                               const PairViscosities& viscosities, State<D>& state) override {
+        with_smooth_kernel(kind, params.h, [&](const auto& kernel) {
+            cells_.pressure_acceleration(params, kernel, boundary, viscosities, state);
+        });
+    }
+
+  private:
+    // The scene refuses single precision with the seed's spiky kernel.
+    template <class F>
+    static void with_smooth_kernel(KernelKind kind, Real support, const F& f) {
+        if (kind == KernelKind::cubic_spline)
+            f(CubicSpline<D>(support));
+        else if (kind == KernelKind::wendland_c2)
+            f(WendlandC2<D>(support));
+        else
+            throw std::logic_error("single precision needs a kernel smooth at the origin");
+    }
+
+    CellPasses<D> cells_;
+};
+
+template <int D>
+std::unique_ptr<SinglePasses<D>> make_passes() {
+    return std::make_unique<Passes<D>>();
+}
+template std::unique_ptr<SinglePasses<2>> make_passes<2>();
+template std::unique_ptr<SinglePasses<3>> make_passes<3>();
+
+} // namespace sph::SPHCLIP_SIMD_VARIANT

@@ -16,26 +16,25 @@ namespace {
 // neighbour lists, or in float on grid cells.
 template <int D, class Kernel>
 void density(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
-             CellPasses<D>& cells, State<D>& state) {
+             SinglePasses<D>* single, State<D>& state) {
     if (params.precision == Precision::double_precision) {
         find_neighbours_and_density(params, kernel, context, state);
-    } else if constexpr (Kernel::smooth_at_origin) {
-        {
-            auto timed = context.time(Stage::neighbour_search);
-            cells.find_cells(state.position, context.boundary, params.h);
-        }
-        auto timed = context.time(Stage::density);
-        cells.density(params, kernel, context.boundary, state);
-    } else {
-        throw std::logic_error("wcsph: single precision needs a smooth kernel");
+        return;
     }
+    SinglePasses<D>& cells = *single;
+    {
+        auto timed = context.time(Stage::neighbour_search);
+        cells.find_cells(state.position, context.boundary, params.h);
+    }
+    auto timed = context.time(Stage::density);
+    cells.density(params, params.kernel, context.boundary, state);
 }
 
 // The density, then Tait's pressure.
 template <int D, class Kernel>
 void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
-                          CellPasses<D>& cells, State<D>& state) {
-    density(params, kernel, context, cells, state);
+                          SinglePasses<D>* single, State<D>& state) {
+    density(params, kernel, context, single, state);
     auto timed = context.time(Stage::pressure);
     compute_pressure_tait(params, state);
 }
@@ -55,19 +54,17 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
     const MorrisViscosity morris = laminar ? laminar->pair_viscosity(params) : MorrisViscosity{};
     const PairViscosities viscosities{artificial ? &monaghan : nullptr,
                                       laminar ? &morris : nullptr};
+    SinglePasses<D>* single =
+        params.precision == Precision::single ? &single_passes() : nullptr;
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
-        density_and_pressure(params, kernel, context, cells_, state);
+        density_and_pressure(params, kernel, context, single, state);
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij) grad W,
         // walls included, and Morris's viscosity.
         auto timed = context.time(Stage::pressure);
-        if constexpr (std::decay_t<decltype(kernel)>::smooth_at_origin) {
-            if (params.precision == Precision::single) {
-                cells_.pressure_acceleration(params, kernel, context.boundary, viscosities, state);
-                return;
-            }
-        } else if (params.precision == Precision::single) {
-            throw std::logic_error("wcsph: single precision needs a smooth kernel");
+        if (params.precision == Precision::single) {
+            single->pressure_acceleration(params, kernel_, context.boundary, viscosities, state);
+            return;
         }
         compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
                                       context.boundary_neighbours, viscosities, pressure_term_,
@@ -82,11 +79,13 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
 template <int D>
 void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
                                    StepContext<D>& context) {
+    SinglePasses<D>* single =
+        params.precision == Precision::single ? &single_passes() : nullptr;
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         if (context.output_pressure)
-            density_and_pressure(params, kernel, context, cells_, state);
+            density_and_pressure(params, kernel, context, single, state);
         else // the next step computes its own pressure
-            density(params, kernel, context, cells_, state);
+            density(params, kernel, context, single, state);
     });
     // The outputs read the neighbour lists (3D culling of buried particles),
     // which single-precision steps do not build.

@@ -6,9 +6,10 @@
 // sets the sound speed c = sqrt(K / rho0); density errors scale like (v / c)^2.
 
 #include "sph/equation_of_state.hpp"
-#include "sph/single_precision/cell_passes.hpp"
+#include "sph/single_precision/single_passes.hpp"
 #include "sph/solvers/explicit_solver.hpp"
 
+#include <memory>
 #include <vector>
 
 namespace sph {
@@ -39,9 +40,17 @@ class WcsphSolver final : public ExplicitSolver<D> {
                                StepContext<D>& context) override;
 
   private:
+    // The single-precision passes and their buffers, made at their first
+    // use for the processor's widest variant.
+    SinglePasses<D>& single_passes() {
+        if (!single_)
+            single_ = make_single_passes<D>();
+        return *single_;
+    }
+
     KernelKind kernel_;
     std::vector<Real> pressure_term_; // p / rho^2 per particle, scratch
-    CellPasses<D> cells_;             // the single-precision passes and their buffers
+    std::unique_ptr<SinglePasses<D>> single_;
 };
 
 } // namespace sph

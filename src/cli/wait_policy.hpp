@@ -1,0 +1,25 @@
+#pragma once
+// How sphclip's OpenMP threads wait, on a machine it may share (issue 22,
+// item 4; docs/benchmarks.md, "Busy machines").
+//
+// libgomp reads its wait policy once, from the environment, before main()
+// runs. Its default spins up to 300,000 times at every barrier before it
+// sleeps. On a machine where another process holds a core, the spinning
+// thread takes the core from the thread it waits for. The 5,000-particle
+// dam break then ran at 0.07x of `--threads 1`. So when the user has set
+// neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT, sphclip sets GOMP_SPINCOUNT to
+// `default_spin_count` and starts itself again, once, with the same
+// arguments, before anything else happens. A policy the user sets is kept.
+
+namespace sph {
+
+// Spins before a waiting thread sleeps, chosen by sphclip_bench_flow on a
+// quiet and a loaded machine (docs/benchmarks.md, "Busy machines").
+inline constexpr const char* default_spin_count = "10000";
+
+// Returns when the policy is in force. Otherwise it re-executes the program
+// and does not return. It also returns when /proc/self/exe cannot be
+// executed; the run then keeps libgomp's default.
+void apply_wait_policy(char** argv);
+
+} // namespace sph

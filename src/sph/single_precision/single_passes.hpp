@@ -1,0 +1,71 @@
+#pragma once
+// The single-precision passes (cell_passes.hpp) behind one interface, so that
+// their loops can be compiled for several instruction sets in one binary and
+// the widest the processor has is picked when the solver is made (issue 22,
+// item 2; docs/building.md, "The instruction set").
+//
+// Each variant is cell_passes.hpp compiled in a translation unit of its own
+// (cell_passes_*.cpp) under `#pragma GCC target`, inside a namespace named
+// after the variant. Everything that file reads is included here first,
+// outside any target region: the inline functions shared with the rest of the
+// program (kernels, viscosities, the grid) are then compiled once for the
+// build's baseline, and no wider instruction can reach code that runs on
+// every processor through the linker's choice between duplicates.
+
+#include "sph/boundaries/boundary_particles.hpp"
+#include "sph/headroom.hpp"
+#include "sph/kernels.hpp"
+#include "sph/neighbours/cell_neighbourhoods.hpp"
+#include "sph/neighbours/neighbour_list.hpp"
+#include "sph/params.hpp"
+#include "sph/pressure_acceleration.hpp"
+#include "sph/state.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <omp.h>
+#include <span>
+#include <stdexcept>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace sph {
+
+template <int D>
+class SinglePasses {
+  public:
+    virtual ~SinglePasses() = default;
+    // The grid cells at these positions (fluid and walls): the step's
+    // neighbour search. `boundary` may be null.
+    virtual void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
+                            Real radius) = 0;
+    // state.density = sum_j m_j W_ij over fluid and wall particles.
+    virtual void density(const Params<D>& params, KernelKind kernel,
+                         const BoundaryParticles<D>* boundary, State<D>& state) = 0;
+    // state.acceleration = the pressure acceleration with the viscosities
+    // the scene names, walls included.
+    virtual void pressure_acceleration(const Params<D>& params, KernelKind kernel,
+                                       const BoundaryParticles<D>* boundary,
+                                       const PairViscosities& viscosities, State<D>& state) = 0;
+};
+
+// The variants this binary holds, widest first: "avx512" (x86-64-v4's
+// AVX-512 F/VL/BW/DQ with AVX2 and FMA), "avx2" (x86-64-v3: AVX2, FMA),
+// "baseline" (the build's -march); a build for the build machine's own
+// processor (SPHCLIP_ARCH=native) holds one, "native".
+std::span<const std::string_view> simd_variants();
+// Whether this processor can run the variant.
+bool simd_variant_runs(std::string_view variant);
+// The variant the passes use: the environment's SPHCLIP_SIMD when set (tests
+// and benchmarks pin a variant with it), else the widest that runs. Throws
+// std::runtime_error naming SPHCLIP_SIMD when that names a variant this
+// binary lacks or this processor cannot run.
+std::string_view simd_variant();
+
+template <int D>
+std::unique_ptr<SinglePasses<D>> make_single_passes();
+
+} // namespace sph

@@ -90,7 +90,7 @@ Snapshot make_particles(std::size_t n, bool block, double spacing, double box) {
 // RenderSettings' defaults instead.
 struct Technique {
     const char* name;
-    const char* spheres = "impostor";
+    SphereDrawing spheres = SphereDrawing::impostor;
     bool skip_buried = true;
     bool cull_view = true;
     double flat_below_px = 0;
@@ -155,7 +155,7 @@ struct Row {
 
 // How the impostors' outlines are chosen.
 std::string outline_name(const RenderSettings& r) {
-    if (r.spheres != "impostor")
+    if (r.spheres != SphereDrawing::impostor)
         return "";
     if (r.triangles_below_px <= 0)
         return "square";
@@ -314,8 +314,11 @@ int main(int argc, char** argv) {
          .shadows = true,
          .ambient_occlusion = true,
          .light_row = true},
-        {.name = "seed: mesh", .spheres = "mesh", .skip_buried = false, .cull_view = false},
-        {.name = "mesh", .spheres = "mesh"},
+        {.name = "seed: mesh",
+         .spheres = SphereDrawing::mesh,
+         .skip_buried = false,
+         .cull_view = false},
+        {.name = "mesh", .spheres = SphereDrawing::mesh},
     };
 
     emit("backend,layout,particles,technique,spheres,skip_buried,cull_view,flat_below_px,"
@@ -337,7 +340,7 @@ int main(int argc, char** argv) {
                 for (const Technique& t : techniques) {
                     const bool is_reference = &t == &techniques.front();
                     const bool is_default = t.defaults;
-                    const bool mesh = std::strcmp(t.spheres, "mesh") == 0;
+                    const bool mesh = t.spheres == SphereDrawing::mesh;
                     // What each layout is for: every technique on the whole
                     // block and the gas; culling on the close-up. Meshes
                     // (the seed's 80 triangles a sphere) stop at 100k.
@@ -419,14 +422,14 @@ int main(int argc, char** argv) {
                         versus = fmt::format("{:.2f},{:.2f},{}", c.mean_difference,
                                              c.different_percent, c.match ? "yes" : "no");
                     }
-                    const bool flat = v.flat_below_px > 0 && r.spheres == "impostor";
+                    const bool flat = v.flat_below_px > 0 && r.spheres == SphereDrawing::impostor;
                     const double ms = median(row.ms);
                     emit(fmt::format(
                         "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.2f},{:."
                         "1f},"
                         "{:.1f},{:.1f},{:.1f},{},{:.0f}",
-                        backend, layout, n, t.name, t.spheres, r.cull_buried ? "yes" : "no",
-                        r.cull_outside_view ? "yes" : "no",
+                        backend, layout, n, t.name, choice_name(t.spheres),
+                        r.cull_buried ? "yes" : "no", r.cull_outside_view ? "yes" : "no",
                         flat ? fmt::format("{:g}", v.flat_below_px) : "",
                         flat ? (v.flat_as_points ? "points" : "quads") : "",
                         v.sort_front_to_back ? "yes" : "no", outline_name(r), r.samples,

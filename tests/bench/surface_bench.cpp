@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
                 r.width = width;
                 r.height = height;
                 r.dimension = 3;
-                r.style = "surface";
+                r.style = FluidStyle::surface;
                 r.surface = surface;
                 r.spacing = spacing;
                 r.radius = 0.5 * spacing;

@@ -855,7 +855,7 @@ Derived derive(const Scene& s) {
                 g += s.effects.gravity->acceleration[a] * s.effects.gravity->acceleration[a];
         d.dt = stable_time_step(time_step_settings(s),
                                 {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density,
-                                 s.effects.viscosity ? s.effects.viscosity->mu : 0.0},
+                                 diffusion_viscosity(s.effects)},
                                 {.carries_sound = solver_capabilities(s.solver.name).carries_sound},
                                 {0, std::sqrt(g)});
     }

@@ -172,7 +172,7 @@ TEST_CASE("fit fluid and follow frame the fluid, not the tank", "[render]") {
     const double aspect = l.scene.width / l.scene.height;
     for (const char* fit : {"fluid", "follow"}) {
         INFO(fit);
-        s.camera_fit = fit;
+        s.camera_fit = *choice_named<CameraFit>(fit);
         CameraRig rig(s, aspect);
         const CameraPose pose = rig.pose(box_points(3, s.fluid_min, s.fluid_max, 0));
         const Camera camera = make_camera(s, pose, l);
@@ -246,7 +246,7 @@ TEST_CASE("follow's camera never cuts a particle off (2D and 3D)", "[render]") {
         s.frame_to_domain = dimension == 3;
         if (dimension == 2)
             s.domain_max.z = 0;
-        s.camera_fit = "follow";
+        s.camera_fit = CameraFit::follow;
         const FrameLayout l = layout_for(s, {.top = 20, .right = 80});
         CameraRig rig(s, l.scene.width / l.scene.height);
         for (std::uint64_t k = 0; k < 20; ++k) {

@@ -5,6 +5,7 @@
 // row or particle export ever holds inf or NaN.
 
 #include "support/run_sphclip.hpp"
+#include "support/small_tank.hpp"
 #include "support/temp_folder.hpp"
 #include "support/text.hpp"
 
@@ -22,11 +23,7 @@ using sph::test::run_sphclip;
 using sph::test::TempFolder;
 using sph::test::write_text;
 
-const std::string small_scene = R"({
-    "domain": {"min": [0, 0], "max": [0.1, 0.1]},
-    "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
-    "duration": 0.05, "fps": 40
-})";
+const std::string small_scene = sph::test::small_tank(0.05);
 
 // Every cell of a CSV file, after its header, is a finite number or text
 // that is not a number (hashes); "inf" or "nan" anywhere fails.

@@ -440,7 +440,7 @@ TEST_CASE("the renderer draws a mesh obstacle solid", "[obstacles][mesh]") {
     REQUIRE(settings.obstacles.size() == 1);
     for (const char* background : {"light", "dark"}) {
         INFO(background);
-        settings.background = background;
+        settings.background = *choice_named<Background>(background);
         RenderSettings without = settings;
         without.obstacles.clear();
         const Image with_mesh = draw(settings), bare = draw(without);

@@ -527,7 +527,7 @@ TEST_CASE("the renderer draws obstacles", "[obstacles]") {
     // The box is 0.04 m x 0.03 m at about 1,145 px/m: 46 x 34 px.
     for (const char* background : {"light", "dark"}) {
         INFO(background);
-        settings.background = background;
+        settings.background = *choice_named<Background>(background);
         CHECK(fill_pixels(settings) > 1000);
         RenderSettings without = settings;
         without.obstacles.clear();

@@ -4,6 +4,7 @@
 // stats.csv's name for each quantity they share with it.
 
 #include "support/run_sphclip.hpp"
+#include "support/small_tank.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>
@@ -25,12 +26,8 @@ using sph::test::TempFolder;
 using sph::test::TextCsv;
 using sph::test::write_text;
 
-// A small 2D tank: 36 particles, 3 frames.
-const std::string small_scene = R"({
-    "domain": {"min": [0, 0], "max": [0.1, 0.1]},
-    "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
-    "duration": 0.05, "fps": 40
-})";
+// 36 particles, 3 frames.
+const std::string small_scene = sph::test::small_tank(0.05);
 
 void require_ok(const sph::test::ProgramResult& result) {
     INFO(result.output);

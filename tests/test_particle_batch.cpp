@@ -56,7 +56,7 @@ TEST_CASE("the batch skips buried and unseen particles, and keeps the others' va
     // Without culling, all three, in the snapshot's order.
     r.cull_buried = false;
     r.cull_outside_view = false;
-    r.field = "density";
+    r.field = ColourField::density;
     ParticleBatch all(r, 1);
     all.fill(frame, camera, [](const SphereImage&) { return std::size_t(0); });
     CHECK(all.drawn() == 3);
@@ -71,14 +71,14 @@ TEST_CASE("the renderer's rule puts small impostors on triangles, meshes on squa
     RenderSettings r = front_view();
     const Camera camera = make_camera(r, fixed_pose(r), layout_frame(r.width, r.height));
     // A 0.02 m sphere 2.5 m away is about a pixel across.
-    for (const char* spheres : {"impostor", "mesh"})
+    for (SphereDrawing spheres : {SphereDrawing::impostor, SphereDrawing::mesh})
         for (double below : {0.0, 12.0}) {
-            INFO(spheres << ", triangles below " << below << " px");
+            INFO(choice_name(spheres) << ", triangles below " << below << " px");
             r.spheres = spheres;
             r.triangles_below_px = below;
             ParticleBatch batch(r, outline_groups);
             batch.fill(frame, camera, OutlineRule(r));
-            const bool triangles = r.spheres == "impostor" && below > 0;
+            const bool triangles = r.spheres == SphereDrawing::impostor && below > 0;
             CHECK(batch.count(triangle_group) == (triangles ? 2u : 0u));
             CHECK(batch.count(square_group) == (triangles ? 0u : 2u));
         }

@@ -4,6 +4,7 @@
 // a stand-in sbatch (tests/slurm/check_slurm.sh runs a real Slurm).
 
 #include "support/run_sphclip.hpp"
+#include "support/small_tank.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>
@@ -24,12 +25,7 @@ using sph::test::TempFolder;
 using sph::test::write_text;
 
 // 36 particles, 0.1 s at 40 fps: well under a second a run.
-const std::string tiny_scene = R"({
-    "domain": {"min": [0, 0], "max": [0.1, 0.1]},
-    "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
-    "duration": 0.1,
-    "fps": 40
-})";
+const std::string tiny_scene = sph::test::small_tank(0.1);
 
 json read_json(const fs::path& file) {
     return json::parse(read_text(file));

@@ -5,6 +5,7 @@
 // that every frame prints one, without waiting 10 s.
 
 #include "support/run_sphclip.hpp"
+#include "support/small_tank.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>
@@ -24,12 +25,8 @@ bool contains(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
 
-// A small 2D tank: 36 particles, 5 frames (0 to 0.1 s at 40 fps).
-const std::string small_scene = R"({
-    "domain": {"min": [0, 0], "max": [0.1, 0.1]},
-    "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
-    "duration": 0.1, "fps": 40
-})";
+// 36 particles, 5 frames (0 to 0.1 s at 40 fps).
+const std::string small_scene = sph::test::small_tank(0.1);
 
 // The environment variable for the run of one test (each test case is its
 // own process under ctest).

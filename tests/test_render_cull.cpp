@@ -18,7 +18,7 @@ RenderSettings settings_for(int dimension, const std::string& spheres, double sp
     r.width = 320;
     r.height = 180;
     r.dimension = dimension;
-    r.spheres = spheres;
+    r.spheres = *choice_named<SphereDrawing>(spheres);
     r.radius = 0.5 * spacing;
     r.range = {0, 0.1};
     return r;

@@ -42,7 +42,7 @@ TEST_CASE("each colour field has its own default range from the scene's physics"
     CHECK(d.range[0] == Approx(1000 * (1 - compression)));
     CHECK(d.range[1] == Approx(1000 * (1 + compression)));
     CHECK(d.label == "density (kg/m^3)");
-    CHECK(d.colour_map == "diverging");
+    CHECK(d.colour_map == ColourMap::diverging);
 
     // Pressure 0 .. rho0 g H under the 2D dam break's still column.
     const Scene dam = load_scene(shipped("dam_break_2d"), {{"render.colour", "pressure"}});

@@ -41,7 +41,7 @@ TEST_CASE("without a variant, the variant renderer draws the renderer's frame", 
                 const Snapshot snapshot = lattice(dimension, dimension == 3 ? 12 : 20, spacing);
                 RenderSettings r = cube_view(spacing, 320, 180);
                 r.dimension = dimension;
-                r.spheres = spheres;
+                r.spheres = *choice_named<SphereDrawing>(spheres);
                 if (dimension == 2)
                     r.domain_max = glm::dvec3(0.1, 0.1, 0);
                 auto context = make_gl_context(backend);

@@ -306,7 +306,7 @@ TEST_CASE("set overrides take numbers, arrays, objects, strings and list items",
     SECTION("a string, taken as text when it is not JSON") {
         const Scene s = parse(small_2d(), {{"solver.name", "seed"}, {"render.colour", "density"}});
         CHECK(s.solver.name == sph::SolverKind::seed);
-        CHECK(s.render.colour == "density");
+        CHECK(s.render.colour == sph::ColourField::density);
     }
     SECTION("an item of a list, by its index") {
         const Scene s = parse(small_2d(), {{"fluid.blocks.0.min", "[0.01, 0]"}});

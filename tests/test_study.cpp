@@ -7,6 +7,7 @@
 #include "analysis/study_plan.hpp"
 #include "io/input_error.hpp"
 #include "support/run_sphclip.hpp"
+#include "support/small_tank.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>
@@ -29,12 +30,7 @@ constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
 // 6 x 6 = 36 particles in a small box, 0.1 s at 40 fps: a run takes well
 // under a second.
-const std::string tiny_scene = R"({
-    "domain": {"min": [0, 0], "max": [0.1, 0.1]},
-    "fluid": {"spacing": 0.005, "blocks": [{"min": [0, 0], "max": [0.03, 0.03]}]},
-    "duration": 0.1,
-    "fps": 40
-})";
+const std::string tiny_scene = sph::test::small_tank(0.1);
 
 } // namespace
 

@@ -70,7 +70,7 @@ std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges(const std::vector<s
 TEST_CASE("2D: the filled region is the particles' discs' block, its outline closed", "[surface]") {
     const double s = 0.01;
     const Snapshot f = lattice_block(2, 20, s); // [0, 0.2]^2
-    const Surface surface = reconstruct_surface(f, "velocity", s, SurfaceSettings{});
+    const Surface surface = reconstruct_surface(f, ColourField::velocity, s, SurfaceSettings{});
     const SurfaceMesh& m = surface.mesh;
     REQUIRE(m.dimension == 2);
     REQUIRE(!m.triangles.empty());
@@ -121,7 +121,7 @@ TEST_CASE("2D: two separate blocks give two regions", "[surface]") {
         f.pressure.push_back(0);
         f.id.push_back(std::uint32_t(f.id.size()));
     }
-    const SurfaceMesh m = reconstruct_surface(f, "velocity", s, SurfaceSettings{}).mesh;
+    const SurfaceMesh m = reconstruct_surface(f, ColourField::velocity, s, SurfaceSettings{}).mesh;
     // No triangle spans the gap between 0.08 and 0.2.
     for (std::size_t k = 0; k < m.triangles.size(); ++k)
         CHECK(!(m.positions[3 * m.triangles[k]] > 0.1 && m.positions[3 * m.triangles[k]] < 0.18));
@@ -132,7 +132,7 @@ TEST_CASE("3D: the level set's mesh is closed, faces out, and bounds the spheres
           "[surface]") {
     const double s = 0.01;
     const Snapshot f = lattice_block(3, 12, s); // [0, 0.12]^3
-    const Surface surface = reconstruct_surface(f, "velocity", s, SurfaceSettings{});
+    const Surface surface = reconstruct_surface(f, ColourField::velocity, s, SurfaceSettings{});
     const SurfaceMesh& m = surface.mesh;
     REQUIRE(surface.level_set);
     REQUIRE(m.vertices() > 100);
@@ -167,7 +167,7 @@ TEST_CASE("3D: the .vdb reads back with OpenVDB as the level set meshed", "[surf
     test::TempFolder tmp;
     const double s = 0.01;
     const Surface surface =
-        reconstruct_surface(lattice_block(3, 6, s), "velocity", s, SurfaceSettings{});
+        reconstruct_surface(lattice_block(3, 6, s), ColourField::velocity, s, SurfaceSettings{});
     const fs::path path = tmp / "surface.vdb";
     write_level_set(*surface.level_set, path);
     CHECK(!fs::exists(tmp / "surface.vdb.partial"));
@@ -203,7 +203,7 @@ TEST_CASE("the .ply is binary little-endian with the bytes its header promises",
     m.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1};
     m.scalar = {0, 0.5f, 1};
     m.triangles = {0, 1, 2};
-    const std::string ply = ply_bytes(m, "speed", "viridis", {0, 1});
+    const std::string ply = ply_bytes(m, "speed", ColourMap::viridis, {0, 1});
     const std::string end = "end_header\n";
     const auto body = ply.find(end);
     REQUIRE(body != std::string::npos);

@@ -4,6 +4,7 @@
 // the fluid's own viscous acceleration, that wcsph's pressure pass adds them
 // as the effects do, and that a viscous fluid spreads slowly.
 #include "io/input_error.hpp"
+#include "io/keys/effect_registry.hpp"
 #include "io/scene_setup.hpp"
 #include "sph/density.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
@@ -125,8 +126,11 @@ TEST_CASE("the scene gets the viscosity effects it asks for", "[viscosity][effec
     {
         const Scene s = default_scene({{"effects", R"({"viscosity": {"mu": 7}})"}});
         CHECK(diffusion_viscosity(make_effects<2>(s)) == 7);
+        // derive()'s first step asks the scene's effects the same question.
+        CHECK(diffusion_viscosity(s.effects) == 7);
         const Scene none = default_scene({{"effects", "{}"}, {"material.viscosity", "0"}});
         CHECK(diffusion_viscosity(make_effects<2>(none)) == 0);
+        CHECK(diffusion_viscosity(none.effects) == 0);
     }
 }
 

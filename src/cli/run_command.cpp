@@ -244,8 +244,8 @@ int run_command(const RunOptions& given) {
     // The GL context before any output: when none can be made, nothing is written.
     std::unique_ptr<GlContext> gl_context;
     if (options.png || options.mp4)
-        gl_context =
-            make_gl_context(options.backend.empty() ? scene.render.backend : options.backend);
+        gl_context = options.backend.empty() ? make_gl_context(scene.render.backend)
+                                             : make_gl_context(std::string_view(options.backend));
     if (gl_context) {
         // A frame the context cannot draw is known now, before any output.
         const RenderSettings settings = make_render_settings(scene);

@@ -287,7 +287,7 @@ void check_render_surface(const FieldReader& r, const Scene& s) {
     if (!(f.radius >= 0.5 && f.radius <= 4))
         r.fail("render.surface.radius",
                fmt::format("must be 0.5 to 4 particle spacings, got {}", f.radius));
-    if (s.render.style != "surface" || s.dimension != 3)
+    if (s.render.style != FluidStyle::surface || s.dimension != 3)
         return;
     // OpenVDB's rasteriser drops spheres under 1.5 voxels: nothing would show.
     if (f.radius < 1.5 * f.voxel)
@@ -855,7 +855,7 @@ Derived derive(const Scene& s) {
                 g += s.effects.gravity->acceleration[a] * s.effects.gravity->acceleration[a];
         d.dt = stable_time_step(time_step_settings(s),
                                 {d.h, s.fluid.spacing, d.sound_speed, s.material.rest_density,
-                                 s.effects.viscosity ? s.effects.viscosity->mu : 0.0},
+                                 diffusion_viscosity(s.effects)},
                                 {.carries_sound = solver_capabilities(s.solver.name).carries_sound},
                                 {0, std::sqrt(g)});
     }

@@ -4,6 +4,7 @@
 // after Martin & Moyce 1952), filled from a JSON scene file and overridden by
 // `--set KEY=VALUE`. Vectors hold 3 components; a 2D scene uses the first 2.
 
+#include "io/render_choices.hpp"
 #include "sph/boundaries/obstacle_keys.hpp"
 #include "sph/boundaries/paddle_keys.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
@@ -113,16 +114,16 @@ struct Scene {
     } effects;
 
     struct Render {
-        std::array<int, 2> size{1280, 720};         // px
-        std::string colour = "velocity";            // density | velocity | pressure
-        std::string colour_map = "auto";            // auto | viridis | turbo | diverging
+        std::array<int, 2> size{1280, 720}; // px
+        ColourField colour = ColourField::velocity;
+        std::optional<ColourMap> colour_map;        // none (auto): the field's own
         std::optional<std::array<double, 2>> range; // field values at the map's ends
-        std::string spheres = "impostor";           // impostor | mesh
-        std::string style = "spheres";              // spheres | surface
-        bool cull_buried = true;                    // 3D: skip particles no camera can see
-        int video_quality = 20;                     // x264 constant quality (CRF), 0 best - 51
+        SphereDrawing spheres = SphereDrawing::impostor;
+        FluidStyle style = FluidStyle::spheres;
+        bool cull_buried = true; // 3D: skip particles no camera can see
+        int video_quality = 20;  // x264 constant quality (CRF), 0 best - 51
         VideoPreset video_preset = VideoPreset::veryfast; // x264 speed/size trade-off
-        std::string backend = "auto";                     // auto | egl | osmesa
+        std::optional<GlBackend> backend;                 // none (auto): EGL, then OSMesa
         std::optional<std::string> title;                 // above the scene; none by default
         std::optional<std::string> caption; // {time} {frame} {steps}; default time and frame
         std::optional<std::string> font;    // a font file; default DejaVu Sans
@@ -130,11 +131,11 @@ struct Scene {
         bool ambient_occlusion = false;     // 3D: screen-space ambient occlusion
         bool floor = true;                  // 3D: a floor under the domain
         bool tank = true;                   // 3D: the domain's walls as faint glass
-        std::string background = "light";   // light | dark
+        Background background = Background::light;
         struct Camera {
             // What the default camera frames: the domain, the fluid where it
             // starts (blocks and emitters), or the fluid's bounds as they move.
-            std::string fit = "domain";   // domain | fluid | follow
+            CameraFit fit = CameraFit::domain;
             std::optional<Vec3> position; // m (3D); default from `fit`
             std::optional<Vec3> target;   // m (3D); default from `fit`
             std::optional<Vec3> up;       // 3D; default +y

@@ -25,14 +25,14 @@ void append(std::string& out, T value) {
     out.append(bytes, sizeof(T));
 }
 
-std::string scalar_name(const std::string& field) {
-    return field == "velocity" ? "speed" : field;
+std::string scalar_name(ColourField field) {
+    return field == ColourField::velocity ? "speed" : choice_name(field);
 }
 
 } // namespace
 
-std::string ply_bytes(const SurfaceMesh& mesh, const std::string& name,
-                      const std::string& colour_map, std::array<double, 2> range) {
+std::string ply_bytes(const SurfaceMesh& mesh, const std::string& name, ColourMap colour_map,
+                      std::array<double, 2> range) {
     const std::vector<Rgb8> table = colour_map_table(colour_map);
     const std::size_t nv = mesh.vertices(), nf = mesh.triangles.size() / 3;
     std::string out = fmt::format("ply\n"

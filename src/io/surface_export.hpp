@@ -29,7 +29,9 @@ class SurfaceExport final : public FrameSink {
     // and surface keys from the render settings.
     SurfaceExport(std::filesystem::path folder, const RenderSettings& settings);
     void write(const Snapshot& frame) override;
-    FrameFields fields() const override { return {.pressure = settings_.field == "pressure"}; }
+    FrameFields fields() const override {
+        return {.pressure = settings_.field == ColourField::pressure};
+    }
 
   private:
     std::filesystem::path folder_;
@@ -38,7 +40,7 @@ class SurfaceExport final : public FrameSink {
 
 // The mesh as a binary little-endian PLY file, the scalar named `scalar_name`,
 // each vertex's colour `colour_map` at its scalar within `range`.
-std::string ply_bytes(const SurfaceMesh& mesh, const std::string& scalar_name,
-                      const std::string& colour_map, std::array<double, 2> range);
+std::string ply_bytes(const SurfaceMesh& mesh, const std::string& scalar_name, ColourMap colour_map,
+                      std::array<double, 2> range);
 
 } // namespace sph

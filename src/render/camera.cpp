@@ -237,9 +237,9 @@ CameraPose CameraRig::pose(const Snapshot& frame) {
         return path_pose(s.camera_path, time, s.dimension);
     if (s.camera_fixed)
         return fixed_pose(s);
-    if (s.camera_fit == "fluid")
+    if (s.camera_fit == CameraFit::fluid)
         return fitted(s.fluid_min, s.fluid_max, true, time);
-    if (s.camera_fit == "follow") {
+    if (s.camera_fit == CameraFit::follow) {
         glm::dvec3 lo(1e300), hi(-1e300);
         const int d = frame.dimension;
         for (std::size_t i = 0; i < frame.size(); ++i)

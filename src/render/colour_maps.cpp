@@ -37,17 +37,25 @@ std::vector<Rgb8> interpolate(const std::uint32_t (&keys)[N], int size) {
 
 } // namespace
 
-std::vector<std::string> colour_map_names() {
-    return {"viridis", "turbo", "diverging"};
+const std::vector<std::string>& colour_map_names() {
+    return choice_names<ColourMap>();
+}
+
+std::vector<Rgb8> colour_map_table(ColourMap map, int size) {
+    switch (map) {
+    case ColourMap::viridis:
+        return interpolate(viridis, size);
+    case ColourMap::turbo:
+        return interpolate(turbo, size);
+    case ColourMap::diverging:
+        break;
+    }
+    return interpolate(diverging, size);
 }
 
 std::vector<Rgb8> colour_map_table(std::string_view name, int size) {
-    if (name == "viridis")
-        return interpolate(viridis, size);
-    if (name == "turbo")
-        return interpolate(turbo, size);
-    if (name == "diverging")
-        return interpolate(diverging, size);
+    if (const auto map = choice_named<ColourMap>(name))
+        return colour_map_table(*map, size);
     throw std::invalid_argument("unknown colour map: " + std::string(name));
 }
 

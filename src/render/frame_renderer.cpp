@@ -43,8 +43,8 @@ struct FrameRenderer::Parts {
         : target(s.width, s.height, s.samples),
           colour_map(gl::make_colour_map_texture(s.colour_map)), outline_rule(s),
           batch(s, outline_groups), spheres(s),
-          surface(s.style == "surface" ? std::make_unique<SurfacePass>(s) : nullptr), scenery(s),
-          overlay(s), layout(layout_for(s, overlay.room())),
+          surface(s.style == FluidStyle::surface ? std::make_unique<SurfacePass>(s) : nullptr),
+          scenery(s), overlay(s), layout(layout_for(s, overlay.room())),
           rig(s, layout.scene.width / std::max(1.0, layout.scene.height)),
           light(s, scenery.reach()) {}
 };

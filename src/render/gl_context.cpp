@@ -68,9 +68,17 @@ std::string frame_size_problem(const GlContext& context, int width, int height, 
 }
 
 std::unique_ptr<GlContext> make_gl_context(std::string_view backend) {
-    if (backend == "egl")
+    if (backend == "auto")
+        return make_gl_context(std::optional<GlBackend>());
+    if (const auto named = choice_named<GlBackend>(backend))
+        return make_gl_context(named);
+    throw std::invalid_argument("unknown GL backend: " + std::string(backend));
+}
+
+std::unique_ptr<GlContext> make_gl_context(std::optional<GlBackend> backend) {
+    if (backend == GlBackend::egl)
         return make_egl_context();
-    if (backend == "osmesa")
+    if (backend == GlBackend::osmesa)
         return make_osmesa_context();
     // auto: EGL first (it reaches GPUs), then OSMesa (always software).
     std::string tried;

@@ -4,7 +4,10 @@
 // framebuffer objects, so no window system surface is ever needed. One
 // context per process at a time: creating it loads the GL functions.
 
+#include "io/render_choices.hpp"
+
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -44,7 +47,10 @@ class GlContext {
 // them, so that a run learns it before it writes anything.
 std::string frame_size_problem(const GlContext& context, int width, int height, int samples);
 
-// "egl", "osmesa", or "auto" (EGL first, then OSMesa).
+// The backend's context; none (auto): EGL first, then OSMesa.
+std::unique_ptr<GlContext> make_gl_context(std::optional<GlBackend> backend);
+// The same by name: "egl", "osmesa" or "auto" (for command-line flags and
+// the tests' lists); throws std::invalid_argument for another name.
 std::unique_ptr<GlContext> make_gl_context(std::string_view backend);
 
 // Each backend's factory; throws GlContextError saying what failed.

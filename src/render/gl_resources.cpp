@@ -114,8 +114,8 @@ void check_gl(const char* where) {
         throw std::runtime_error(fmt::format("OpenGL error 0x{:04x} in {}", error, where));
 }
 
-Texture make_colour_map_texture(const std::string& name) {
-    const auto table = colour_map_table(name, 256);
+Texture make_colour_map_texture(ColourMap map) {
+    const auto table = colour_map_table(map, 256);
     Texture texture = Texture::generate();
     glBindTexture(GL_TEXTURE_1D, texture.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);

@@ -5,6 +5,7 @@
 // colour map as a texture, and the frame's render target.
 
 #include "io/image.hpp"
+#include "io/render_choices.hpp"
 
 #include <glad/gl.h>
 #include <string>
@@ -60,9 +61,9 @@ Program link_program(std::string_view vertex, std::string_view fragment, std::st
 // Throws std::runtime_error naming `where` if GL has recorded an error.
 void check_gl(const char* where);
 
-// The colour map `name` (colour_maps.hpp) as a 256-texel 1D texture,
-// linearly interpolated and clamped at its ends.
-Texture make_colour_map_texture(const std::string& name);
+// The colour map (colour_maps.hpp) as a 256-texel 1D texture, linearly
+// interpolated and clamped at its ends.
+Texture make_colour_map_texture(ColourMap map);
 // Binds it to texture unit 0, where the sphere and overlay programs read it.
 void bind_colour_map(const Texture& texture);
 

@@ -2,7 +2,7 @@
 
 namespace sph {
 
-const Palette& palette(std::string_view background) {
+const Palette& palette(Background background) {
     // A pale, slightly cool studio grey, darker towards the floor: every
     // map's darkest colour has at least 4:1 contrast against it (viridis'
     // #440154 against #c9ced6), and the light top keeps the map's bright end
@@ -33,7 +33,7 @@ const Palette& palette(std::string_view background) {
         .sky = {0.22f, 0.22f, 0.23f},
         .ground = {0.06f, 0.06f, 0.06f},
     };
-    return background == "dark" ? dark : light;
+    return background == Background::dark ? dark : light;
 }
 
 } // namespace sph

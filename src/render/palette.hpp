@@ -1,12 +1,13 @@
 #pragma once
 // The frame's colours by render.background: the backdrop behind the scene
 // and the overlay, the overlay's text and lines, the solids' outlines, the
-// floor, and the ambient light the sky and the ground give. "light" keeps
+// floor, and the ambient light the sky and the ground give. Light keeps
 // the dark end of every colour map visible (viridis' purple, turbo's navy);
-// "dark" is the look before light and depth came in.
+// dark is the look before light and depth came in.
+
+#include "io/render_choices.hpp"
 
 #include <glm/glm.hpp>
-#include <string_view>
 
 namespace sph {
 
@@ -20,7 +21,6 @@ struct Palette {
     glm::vec3 sky, ground;
 };
 
-// The palette named `background` (light | dark); anything else is light.
-const Palette& palette(std::string_view background);
+const Palette& palette(Background background);
 
 } // namespace sph

@@ -5,9 +5,9 @@
 namespace sph {
 
 ParticleBatch::ParticleBatch(const RenderSettings& s, std::size_t groups)
-    : field_(s.field == "velocity"  ? ParticleField::speed
-             : s.field == "density" ? ParticleField::density
-                                    : ParticleField::pressure),
+    : field_(s.field == ColourField::velocity  ? ParticleField::speed
+             : s.field == ColourField::density ? ParticleField::density
+                                               : ParticleField::pressure),
       radius_(s.radius), cull_buried_(s.cull_buried),
       cull_outside_view_(s.cull_outside_view && !casts_shadows(s)),
       // A sphere whose every point is at least a little outside one plane
@@ -34,7 +34,7 @@ std::size_t ParticleBatch::drawn() const {
 }
 
 OutlineRule::OutlineRule(const RenderSettings& s)
-    : triangles(s.spheres == "impostor" && s.triangles_below_px > 0),
+    : triangles(s.spheres == SphereDrawing::impostor && s.triangles_below_px > 0),
       triangles_below_px(s.triangles_below_px) {}
 
 } // namespace sph

@@ -48,20 +48,20 @@ double fastest_speed(const Scene& scene) {
 
 } // namespace
 
-std::array<double, 2> default_colour_range(const Scene& scene, std::string_view field) {
+std::array<double, 2> default_colour_range(const Scene& scene, ColourField field) {
     // Nothing in the scene sets a speed (no gravity, fluid at rest, as a
     // drop pulled round by surface tension): a gentle 0.1 m/s.
     double speed = fastest_speed(scene);
     if (!(speed > 0))
         speed = 0.1;
-    if (field == "velocity")
+    if (field == ColourField::velocity)
         return {0, speed};
     // The pressure that stops that flow: rho0 |g| H under still fluid (the
     // initial speed zero), plus the dynamic pressure rho0 v^2 / 2 of a
     // source's speed; in zero gravity only the latter.
     const double rho0 = scene.material.rest_density;
     const double pressure = 0.5 * rho0 * speed * speed;
-    if (field == "pressure")
+    if (field == ColourField::pressure)
         return {0, pressure};
     // A weakly compressible fluid's density varies with the squared Mach
     // number of its flow, (v / c)^2, c = sqrt(K / rho0) the sound speed
@@ -98,18 +98,22 @@ RenderSettings make_render_settings(const Scene& scene) {
     }
     r.obstacles = scene.effects.obstacles;
     r.paddles = make_paddles<3>(scene);
-    if (r.field == "velocity") {
+    switch (r.field) {
+    case ColourField::velocity:
         r.label = "speed (m/s)";
-        r.colour_map = "viridis";
-    } else if (r.field == "density") {
+        r.colour_map = ColourMap::viridis;
+        break;
+    case ColourField::density:
         r.label = "density (kg/m^3)";
-        r.colour_map = "diverging";
-    } else {
+        r.colour_map = ColourMap::diverging;
+        break;
+    case ColourField::pressure:
         r.label = "pressure (Pa)";
-        r.colour_map = "turbo";
+        r.colour_map = ColourMap::turbo;
+        break;
     }
-    if (scene.render.colour_map != "auto")
-        r.colour_map = scene.render.colour_map;
+    if (scene.render.colour_map)
+        r.colour_map = *scene.render.colour_map;
     r.range = default_colour_range(scene, r.field);
     if (scene.render.range) {
         r.range = *scene.render.range;

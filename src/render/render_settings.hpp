@@ -17,24 +17,24 @@ namespace sph {
 struct RenderSettings {
     int width = 1280, height = 720; // px
     int dimension = 2;
-    std::string field = "velocity";                        // velocity | density | pressure
+    ColourField field = ColourField::velocity;
     std::string label = "speed (m/s)";                     // the colour bar's title
     std::string title;                                     // above the scene, left; empty: none
     std::string caption = "t = {time} s    frame {frame}"; // format_caption's pattern; empty: none
     std::string font; // a font file; empty: find_font's default
-    std::string colour_map = "viridis";
+    ColourMap colour_map = ColourMap::viridis;
     std::array<double, 2> range{0, 1}; // field values at the ends of the map
     // The key that set `range` ("render.range"), or empty when it is the
     // field's default from the scene's physics (default_colour_range).
     std::string range_key;
     // How the fluid is drawn: spheres (one per particle) | surface (a mesh
     // of the free surface reconstructed each frame, render/surface/).
-    std::string style = "spheres";
-    SurfaceSettings surface;          // style surface
-    double spacing = 0.002;           // m, the particles' lattice spacing
-    std::string spheres = "impostor"; // impostor | mesh
-    int mesh_subdivisions = 1;        // mesh: 80 triangles per sphere
-    double radius = 0.001;            // m, drawn sphere radius
+    FluidStyle style = FluidStyle::spheres;
+    SurfaceSettings surface; // style surface
+    double spacing = 0.002;  // m, the particles' lattice spacing
+    SphereDrawing spheres = SphereDrawing::impostor;
+    int mesh_subdivisions = 1; // mesh: 80 triangles per sphere
+    double radius = 0.001;     // m, drawn sphere radius
     glm::dvec3 domain_min{0}, domain_max{1};
     std::vector<SceneObstacle> obstacles; // drawn solid (2D) or as wire outlines (3D)
     // Drawn as boxes (as box obstacles are) where their motion has them at
@@ -50,7 +50,7 @@ struct RenderSettings {
     // target_given, centre_given or view_height > 0 kept as given, or moved
     // along camera_path, or round an orbit.
     bool camera_fixed = true;
-    std::string camera_fit = "domain"; // domain | fluid | follow
+    CameraFit camera_fit = CameraFit::domain;
     glm::dvec3 camera_up{0, 1, 0};
     double view_height = 0; // m, 2D
     bool target_given = false, centre_given = false;
@@ -90,12 +90,12 @@ struct RenderSettings {
     // act in 3D only.
     // Off by default: on llvmpipe each costs more than a plain 10k frame
     // (tests/bench/results/render_light.csv), past the 100 ms goal.
-    bool shadows = false;             // the key light's soft shadows
-    bool ambient_occlusion = false;   // screen-space ambient occlusion
-    bool floor = true;                // a floor under the domain
-    bool tank = true;                 // the domain's walls as faint glass
-    std::string background = "light"; // light | dark (palette.hpp)
-    glm::dvec3 up{0, 1, 0};           // unit, against gravity: the floor's normal
+    bool shadows = false;                      // the key light's soft shadows
+    bool ambient_occlusion = false;            // screen-space ambient occlusion
+    bool floor = true;                         // a floor under the domain
+    bool tank = true;                          // the domain's walls as faint glass
+    Background background = Background::light; // palette.hpp
+    glm::dvec3 up{0, 1, 0};                    // unit, against gravity: the floor's normal
 };
 
 // The field's range when the scene sets none, from the scene's physics, the
@@ -106,8 +106,7 @@ struct RenderSettings {
 // zero gravity the dynamic pressure of that speed); density rho0 (1 +- d),
 // d twice the flow's squared Mach number (v / c)^2 (c the sound speed), at
 // least 1%.
-// `field` is velocity, density or pressure.
-std::array<double, 2> default_colour_range(const Scene& scene, std::string_view field);
+std::array<double, 2> default_colour_range(const Scene& scene, ColourField field);
 
 // Whether the key light casts shadows: 3D, render.shadows.
 inline bool casts_shadows(const RenderSettings& s) {

@@ -39,7 +39,7 @@ class RenderSink final : public FrameSink {
     void finish() override;
     // Pressure only when the particles are coloured by it.
     FrameFields fields() const override {
-        return {.pressure = renderer_.settings().field == "pressure"};
+        return {.pressure = renderer_.settings().field == ColourField::pressure};
     }
 
     const GlInfo& gl_info() const { return context_->info(); }
@@ -59,7 +59,7 @@ class RenderSink final : public FrameSink {
     };
     const std::vector<FramePose>& poses() const { return poses_; }
     int dimension() const { return renderer_.settings().dimension; }
-    const std::string& camera_fit() const { return renderer_.settings().camera_fit; }
+    const std::string& camera_fit() const { return choice_name(renderer_.settings().camera_fit); }
 
   private:
     void check_range(const Snapshot& frame);

@@ -27,7 +27,7 @@ void bind_instance_attributes(GLuint buffer, GLuint divisor) {
 }
 
 SpherePass::SpherePass(const RenderSettings& s, std::string_view impostor_defines)
-    : impostor_(s.spheres == "impostor"),
+    : impostor_(s.spheres == SphereDrawing::impostor),
       radius_(float(s.radius)), range_{float(s.range[0]), float(s.range[1])},
       instances_(gl::Buffer::generate()) {
     if (impostor_) {

@@ -9,6 +9,7 @@
 //   build/sphclip_bench_encode                      # the full table
 //   build/sphclip_bench_encode --repeat 5 --csv F   # also written to F
 //   build/sphclip_bench_encode --tiny               # one small case (CI)
+#include "bench_support.hpp"
 #include "io/mp4_writer.hpp"
 #include "io/scene_setup.hpp"
 #include "render/frame_renderer.hpp"
@@ -115,15 +116,6 @@ void encode(const std::vector<Image>& frames, double fps, const Mp4Options& opti
     fs::remove(file);
 }
 
-std::string cpu_model() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line))
-        if (line.rfind("model name", 0) == 0)
-            return line.substr(line.find(':') + 2);
-    return "unknown CPU";
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -167,7 +159,8 @@ int main(int argc, char** argv) {
         "(off in sphclip); same_bytes: every repeat wrote the same file\n"
         "width,height,preset,threads,mb_tree,frames,fps_median,fps_min,fps_max,ms_per_frame,"
         "bytes,same_bytes\n",
-        sysconf(_SC_NPROCESSORS_ONLN), cpu_model(), snapshots.size(), scene.fps, options.repeat);
+        sysconf(_SC_NPROCESSORS_ONLN), bench::cpu_model(), snapshots.size(), scene.fps,
+        options.repeat);
     std::fputs(table.c_str(), stdout);
     std::fflush(stdout);
 

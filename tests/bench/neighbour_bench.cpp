@@ -10,6 +10,7 @@
 //   build/sphclip_bench_neighbours --csv FILE        # and write it to FILE
 //   build/sphclip_bench_neighbours --quick           # one tiny case each (CI)
 //   build/sphclip_bench_neighbours --compactnsearch  # the 125k 3D case alone
+#include "bench_support.hpp"
 #include "sph/neighbours/sorted_grid.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
 
@@ -154,14 +155,6 @@ bool run_case(std::size_t side, Real radius_dp, bool quick, std::vector<Row>& ro
     return agree;
 }
 
-std::string cpu_model() {
-    std::ifstream cpuinfo("/proc/cpuinfo");
-    for (std::string line; std::getline(cpuinfo, line);)
-        if (line.rfind("model name", 0) == 0)
-            return line.substr(line.find(':') + 2);
-    return "unknown CPU";
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -181,9 +174,6 @@ int main(int argc, char** argv) {
         }
     }
 
-    const std::time_t now = std::time(nullptr);
-    char date[16];
-    std::strftime(date, sizeof date, "%Y-%m-%d", std::localtime(&now));
     const std::string header = fmt::format(
         "# sphclip_bench_neighbours, {}, {} cores (nproc), {}, g++ {}.{}, {}\n"
         "# lattice at spacing dp stored in a random order (shuffled) or in the grid's cell "
@@ -191,7 +181,8 @@ int main(int argc, char** argv) {
         "ms: median per search\n"
         "search,dimension,particles,layout,threads,radius_dp,repetitions,ms,build_ms,query_ms,"
         "pairs,mpairs_per_s\n",
-        date, std::thread::hardware_concurrency(), cpu_model(), __GNUC__, __GNUC_MINOR__,
+        bench::now_utc("%Y-%m-%d"), std::thread::hardware_concurrency(), bench::cpu_model(),
+        __GNUC__, __GNUC_MINOR__,
         quick            ? "--quick"
         : peer_case_only ? "--compactnsearch"
                          : "full");

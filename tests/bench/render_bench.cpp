@@ -17,6 +17,7 @@
 //   build/sphclip_bench_render --counts 1000000 --backends egl   # a part of it
 //   build/sphclip_bench_render --tiny                # one small frame per case (CI)
 //   build/sphclip_bench_render --light --size 1920x1080   # light and depth's rows only
+#include "bench_support.hpp"
 #include "io/image_compare.hpp"
 #include "io/png_io.hpp"
 #include "render/frame_renderer.hpp"
@@ -90,7 +91,7 @@ Snapshot make_particles(std::size_t n, bool block, double spacing, double box) {
 // RenderSettings' defaults instead.
 struct Technique {
     const char* name;
-    const char* spheres = "impostor";
+    SphereDrawing spheres = SphereDrawing::impostor;
     bool skip_buried = true;
     bool cull_view = true;
     double flat_below_px = 0;
@@ -155,7 +156,7 @@ struct Row {
 
 // How the impostors' outlines are chosen.
 std::string outline_name(const RenderSettings& r) {
-    if (r.spheres != "impostor")
+    if (r.spheres != SphereDrawing::impostor)
         return "";
     if (r.triangles_below_px <= 0)
         return "square";
@@ -172,71 +173,19 @@ double cpu_ms() {
     return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
-// The first line of a file that starts with `key` (as /proc/cpuinfo's
-// "model name"), after its colon; empty if none.
-std::string first_line_with(const char* path, const std::string& key) {
-    std::ifstream in(path);
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind(key, 0) == 0) {
-            const std::size_t colon = line.find(':');
-            return colon == std::string::npos ? line : line.substr(colon + 2);
-        }
-    return "";
-}
-
-// The process's resident memory, MB (llvmpipe's buffers and textures are
-// host memory, so they count).
-double resident_mb() {
-    std::ifstream in("/proc/self/status");
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind("VmRSS:", 0) == 0)
-            return std::stod(line.substr(6)) / 1024.0;
-    return 0;
-}
-
-std::string load_average() {
-    std::ifstream in("/proc/loadavg");
-    double one = 0, five = 0, fifteen = 0;
-    in >> one >> five >> fifteen;
-    return fmt::format("{} {} {}", one, five, fifteen);
-}
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    return values[values.size() / 2];
-}
-
-std::vector<std::string> split(const std::string& list) {
-    std::vector<std::string> items;
-    std::size_t from = 0;
-    while (from <= list.size()) {
-        const std::size_t to = std::min(list.find(',', from), list.size());
-        if (to > from)
-            items.push_back(list.substr(from, to - from));
-        from = to + 1;
-    }
-    return items;
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
-    bool tiny = false, light_only = false;
+    bench::CommonOptions options;
+    const bool& tiny = options.tiny;
+    const std::string &csv_path = options.csv, &png_folder = options.png;
+    bool light_only = false;
     int size_w = 0, size_h = 0;
-    std::string csv_path, png_folder, counts_arg, backends_arg = "egl,osmesa";
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
-        if (arg == "--tiny")
-            tiny = true;
-        else if (arg == "--csv" && k + 1 < argc)
-            csv_path = argv[++k];
-        else if (arg == "--png" && k + 1 < argc)
-            png_folder = argv[++k];
-        else if (arg == "--counts" && k + 1 < argc)
-            counts_arg = argv[++k];
-        else if (arg == "--backends" && k + 1 < argc)
-            backends_arg = argv[++k];
-        else if (arg == "--light")
+        if (options.take(k, argc, argv))
+            continue;
+        if (arg == "--light")
             light_only = true;
         else if (arg == "--size" && k + 1 < argc &&
                  std::sscanf(argv[++k], "%dx%d", &size_w, &size_h) == 2 && size_w > 0 &&
@@ -267,29 +216,21 @@ int main(int argc, char** argv) {
 
     const int width = size_w > 0 ? size_w : tiny ? 320 : 1280;
     const int height = size_h > 0 ? size_h : tiny ? 180 : 720;
-    std::vector<std::size_t> counts =
-        tiny ? std::vector<std::size_t>{1000} : std::vector<std::size_t>{10000, 100000, 1000000};
-    if (!counts_arg.empty()) {
-        counts.clear();
-        for (const std::string& item : split(counts_arg))
-            counts.push_back(std::stoul(item));
-    }
-    const std::vector<std::string> backends = split(backends_arg);
+    const std::vector<std::size_t> counts = options.particle_counts(
+        tiny ? std::vector<std::size_t>{1000} : std::vector<std::size_t>{10000, 100000, 1000000});
+    const std::vector<std::string> backends = bench::split_list(options.backends);
     // The machine, in the CSV's header: these figures mean little without it.
     auto note = [csv](const std::string& line) {
         if (csv)
             fmt::print(csv, "# {}\n", line);
     };
     {
-        const std::time_t now = std::time(nullptr);
-        char date[32];
-        std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-        note(fmt::format("sphclip_bench_render, {}", date));
+        note(fmt::format("sphclip_bench_render, {}", bench::now_utc()));
         note(fmt::format("{} cores (nproc), {}", std::thread::hardware_concurrency(),
-                         first_line_with("/proc/cpuinfo", "model name")));
+                         bench::cpu_model()));
         auto context = make_gl_context(backends.empty() ? "auto" : backends.front());
         note(fmt::format("{}, OpenGL {}", context->info().renderer, context->info().version));
-        note(fmt::format("load average (1, 5, 15 min) at the start: {}", load_average()));
+        note(fmt::format("load average (1, 5, 15 min) at the start: {}", bench::load_average()));
     }
     // Every sphere ray-cast on a square first (the renderer before triangles,
     // culling and flat discs): the others' frames are compared with its.
@@ -314,8 +255,11 @@ int main(int argc, char** argv) {
          .shadows = true,
          .ambient_occlusion = true,
          .light_row = true},
-        {.name = "seed: mesh", .spheres = "mesh", .skip_buried = false, .cull_view = false},
-        {.name = "mesh", .spheres = "mesh"},
+        {.name = "seed: mesh",
+         .spheres = SphereDrawing::mesh,
+         .skip_buried = false,
+         .cull_view = false},
+        {.name = "mesh", .spheres = SphereDrawing::mesh},
     };
 
     emit("backend,layout,particles,technique,spheres,skip_buried,cull_view,flat_below_px,"
@@ -337,7 +281,7 @@ int main(int argc, char** argv) {
                 for (const Technique& t : techniques) {
                     const bool is_reference = &t == &techniques.front();
                     const bool is_default = t.defaults;
-                    const bool mesh = std::strcmp(t.spheres, "mesh") == 0;
+                    const bool mesh = t.spheres == SphereDrawing::mesh;
                     // What each layout is for: every technique on the whole
                     // block and the gas; culling on the close-up. Meshes
                     // (the seed's 80 triangles a sphere) stop at 100k.
@@ -419,22 +363,23 @@ int main(int argc, char** argv) {
                         versus = fmt::format("{:.2f},{:.2f},{}", c.mean_difference,
                                              c.different_percent, c.match ? "yes" : "no");
                     }
-                    const bool flat = v.flat_below_px > 0 && r.spheres == "impostor";
-                    const double ms = median(row.ms);
+                    const bool flat = v.flat_below_px > 0 && r.spheres == SphereDrawing::impostor;
+                    const double ms = bench::median(row.ms);
                     emit(fmt::format(
                         "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.1f},{:.2f},{:."
                         "1f},"
                         "{:.1f},{:.1f},{:.1f},{},{:.0f}",
-                        backend, layout, n, t.name, t.spheres, r.cull_buried ? "yes" : "no",
-                        r.cull_outside_view ? "yes" : "no",
+                        backend, layout, n, t.name, choice_name(t.spheres),
+                        r.cull_buried ? "yes" : "no", r.cull_outside_view ? "yes" : "no",
                         flat ? fmt::format("{:g}", v.flat_below_px) : "",
                         flat ? (v.flat_as_points ? "points" : "quads") : "",
                         v.sort_front_to_back ? "yes" : "no", outline_name(r), r.samples,
                         row.drawn(), row.flat(), row.outside_view(), width, height,
                         r.shadows && r.dimension == 3 ? "on" : "off",
                         r.ambient_occlusion && r.dimension == 3 ? "on" : "off", ms, 1e3 / ms,
-                        median(row.cpu_ms), median(row.fill_ms), median(row.draw_ms),
-                        median(row.readback_ms), versus, resident_mb()));
+                        bench::median(row.cpu_ms), bench::median(row.fill_ms),
+                        bench::median(row.draw_ms), bench::median(row.readback_ms), versus,
+                        bench::status_bytes("VmRSS") / (1024.0 * 1024.0)));
                     if (!png_folder.empty()) {
                         std::string name = fmt::format("{}_{}_{}_{}", backend, layout, n, t.name);
                         for (char& c : name)
@@ -445,7 +390,7 @@ int main(int argc, char** argv) {
                 }
             }
         }
-    note(fmt::format("load average (1, 5, 15 min) at the end: {}", load_average()));
+    note(fmt::format("load average (1, 5, 15 min) at the end: {}", bench::load_average()));
     if (csv)
         std::fclose(csv);
     return 0;

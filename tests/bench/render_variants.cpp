@@ -120,7 +120,7 @@ Image VariantRenderer::render(const Snapshot& frame) {
     const DrawVariant& v = variant_;
     const auto start = Clock::now();
     const Camera camera = make_camera(settings_, fixed_pose(settings_), p.layout);
-    const bool may_flat = settings_.spheres == "impostor" && v.flat_below_px > 0;
+    const bool may_flat = settings_.spheres == SphereDrawing::impostor && v.flat_below_px > 0;
     if (v.sort_front_to_back)
         for (std::size_t g = 0; g < groups; ++g) {
             p.depth_keys[g].resize(frame.size());

@@ -32,6 +32,7 @@
 //                      [--dims 2,3] [--threads 1,2] [--steps N] [--search hash,sorted_grid]
 //                      [--reorder 0,20] [--shuffled] [--no-dsph] [--csv FILE]
 
+#include "bench_support.hpp"
 #include "io/scene_setup.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
@@ -63,29 +64,6 @@ constexpr double dt = 2e-5;      // s
 // DualSPHysics 5.0, its 2D dam-break validation case, 2 threads on this
 // machine (docs/benchmarks.md, "Against DualSPHysics").
 constexpr double dualsphysics_rate = 0.6e6; // particle-steps/s
-
-std::vector<std::string> split(const std::string& text) {
-    std::vector<std::string> parts;
-    std::size_t begin = 0;
-    while (begin <= text.size()) {
-        const std::size_t end = std::min(text.find(',', begin), text.size());
-        if (end > begin)
-            parts.push_back(text.substr(begin, end - begin));
-        begin = end + 1;
-    }
-    return parts;
-}
-
-// A field of /proc/self/status in bytes (VmRSS, VmHWM); 0 if unreadable.
-double status_bytes(const char* field) {
-    std::ifstream in("/proc/self/status");
-    std::string line;
-    const std::string key = std::string(field) + ":";
-    while (std::getline(in, line))
-        if (line.compare(0, key.size(), key) == 0)
-            return std::atof(line.c_str() + key.size()) * 1024.0;
-    return 0;
-}
 
 // Restarts the peak resident set (VmHWM) from the current one (Linux 4.0+).
 void reset_peak_rss() {
@@ -190,7 +168,7 @@ Result run(const Scene& scene, int threads, int steps, bool shuffled) {
     omp_set_num_threads(threads);
     Result r;
     r.threads = threads;
-    const double rss_before = status_bytes("VmRSS");
+    const double rss_before = bench::status_bytes("VmRSS");
     reset_peak_rss();
     const auto setup_start = std::chrono::steady_clock::now();
     auto sim = make_simulation<D>(scene);
@@ -231,7 +209,7 @@ Result run(const Scene& scene, int threads, int steps, bool shuffled) {
         [&](auto& array) { bytes += 2.0 * double(array.capacity() * sizeof(array[0])); });
     bytes += double((list.start.capacity() + list.index.capacity()) * sizeof(std::uint32_t));
     r.array_bytes = bytes / double(r.particles);
-    r.peak_rss = status_bytes("VmHWM");
+    r.peak_rss = bench::status_bytes("VmHWM");
     r.rss_bytes = (r.peak_rss - rss_before) / double(r.particles);
     Snapshot frame;
     copy_fields(sim.state(), frame);
@@ -261,31 +239,11 @@ std::string stage_csv(const Result& r) {
     return text;
 }
 
-std::string load_average() {
-    double load[3] = {-1, -1, -1};
-    if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
-        if (std::fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3)
-            load[0] = load[1] = load[2] = -1;
-        std::fclose(f);
-    }
-    return fmt::format("{:.2f} {:.2f} {:.2f}", load[0], load[1], load[2]);
-}
-
 std::string machine() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line, model = "unknown CPU";
-    while (std::getline(in, line))
-        if (line.rfind("model name", 0) == 0) {
-            model = line.substr(line.find(':') + 2);
-            break;
-        }
-    char date[32] = "";
-    const std::time_t now = std::time(nullptr);
-    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M", std::localtime(&now));
     return fmt::format("{}, {} cores (hardware_concurrency), {}, compiler {}, load average at "
                        "start {}",
-                       date, std::thread::hardware_concurrency(), model, __VERSION__,
-                       load_average());
+                       bench::now_utc("%Y-%m-%d %H:%M"), std::thread::hardware_concurrency(),
+                       bench::cpu_model(), __VERSION__, bench::load_average());
 }
 
 int usage() {
@@ -320,28 +278,28 @@ int main(int argc, char** argv) {
             shuffled = true;
         } else if (arg == "--sizes" && has_value) {
             sizes.clear();
-            for (const auto& s : split(argv[++k]))
+            for (const auto& s : bench::split_list(argv[++k]))
                 sizes.push_back(std::strtoull(s.c_str(), nullptr, 10));
         } else if (arg == "--solvers" && has_value) {
-            solvers = split(argv[++k]);
+            solvers = bench::split_list(argv[++k]);
         } else if (arg == "--dims" && has_value) {
             dims.clear();
-            for (const auto& s : split(argv[++k]))
+            for (const auto& s : bench::split_list(argv[++k]))
                 dims.push_back(std::atoi(s.c_str()));
         } else if (arg == "--threads" && has_value) {
             thread_counts.clear();
-            for (const auto& s : split(argv[++k]))
+            for (const auto& s : bench::split_list(argv[++k]))
                 thread_counts.push_back(std::atoi(s.c_str()));
         } else if (arg == "--steps" && has_value) {
             steps = std::atoi(argv[++k]);
         } else if (arg == "--search" && has_value) {
-            searches = split(argv[++k]);
+            searches = bench::split_list(argv[++k]);
         } else if (arg == "--reorder" && has_value) {
             reorders.clear();
-            for (const auto& s : split(argv[++k]))
+            for (const auto& s : bench::split_list(argv[++k]))
                 reorders.push_back(std::atoi(s.c_str()));
         } else if (arg == "--precision" && has_value) {
-            precisions = split(argv[++k]);
+            precisions = bench::split_list(argv[++k]);
         } else if (arg == "--csv" && has_value) {
             csv = std::fopen(argv[++k], "w");
             if (!csv)
@@ -450,9 +408,9 @@ int main(int argc, char** argv) {
         }
     }
     // Another program running meanwhile slows the 2-thread runs most.
-    fmt::print("\nload average at the end {}\n", load_average());
+    fmt::print("\nload average at the end {}\n", bench::load_average());
     if (csv) {
-        fmt::print(csv, "# load average at the end {}\n", load_average());
+        fmt::print(csv, "# load average at the end {}\n", bench::load_average());
         std::fclose(csv);
     }
     fmt::print("{}\n", all_same ? "every thread count gave the same state hash"

@@ -12,6 +12,7 @@
 //   build/sphclip_bench_surface --png FOLDER     # ... and each row's frame
 //   build/sphclip_bench_surface --counts 100000 --backends egl
 //   build/sphclip_bench_surface --tiny           # one small frame (CI)
+#include "bench_support.hpp"
 #include "io/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
@@ -66,66 +67,19 @@ Snapshot make_fluid(std::size_t n, double spacing) {
     return s;
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
-double peak_rss_mib() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return double(usage.ru_maxrss) / 1024.0;
-}
-
-std::string first_line_with(const char* path, const std::string& key) {
-    std::ifstream in(path);
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind(key, 0) == 0) {
-            const std::size_t colon = line.find(':');
-            return colon == std::string::npos ? line : line.substr(colon + 2);
-        }
-    return "";
-}
-
-std::string load_average() {
-    std::ifstream in("/proc/loadavg");
-    double one = 0, five = 0, fifteen = 0;
-    in >> one >> five >> fifteen;
-    return fmt::format("{} {} {}", one, five, fifteen);
-}
-
-std::vector<std::string> split(const std::string& list) {
-    std::vector<std::string> items;
-    std::size_t from = 0;
-    while (from <= list.size()) {
-        const std::size_t to = std::min(list.find(',', from), list.size());
-        if (to > from)
-            items.push_back(list.substr(from, to - from));
-        from = to + 1;
-    }
-    return items;
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
-    bool tiny = false;
-    std::string csv_path, png_folder, counts_arg, backends_arg = "egl,osmesa";
+    bench::CommonOptions options;
+    const bool& tiny = options.tiny;
+    const std::string &csv_path = options.csv, &png_folder = options.png;
     int repeats = 3;
     SurfaceSettings surface;
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
-        if (arg == "--tiny")
-            tiny = true;
-        else if (arg == "--csv" && k + 1 < argc)
-            csv_path = argv[++k];
-        else if (arg == "--png" && k + 1 < argc)
-            png_folder = argv[++k];
-        else if (arg == "--counts" && k + 1 < argc)
-            counts_arg = argv[++k];
-        else if (arg == "--backends" && k + 1 < argc)
-            backends_arg = argv[++k];
-        else if (arg == "--smoothing" && k + 1 < argc)
+        if (options.take(k, argc, argv))
+            continue;
+        if (arg == "--smoothing" && k + 1 < argc)
             surface.smoothing = std::stoi(argv[++k]);
         else if (arg == "--voxel" && k + 1 < argc)
             surface.voxel = std::stod(argv[++k]);
@@ -158,32 +112,24 @@ int main(int argc, char** argv) {
     };
     if (!png_folder.empty())
         std::filesystem::create_directories(png_folder);
-    std::vector<std::size_t> counts =
-        tiny ? std::vector<std::size_t>{2000} : std::vector<std::size_t>{10000, 100000, 1000000};
-    if (!counts_arg.empty()) {
-        counts.clear();
-        for (const std::string& item : split(counts_arg))
-            counts.push_back(std::stoul(item));
-    }
+    const std::vector<std::size_t> counts = options.particle_counts(
+        tiny ? std::vector<std::size_t>{2000} : std::vector<std::size_t>{10000, 100000, 1000000});
     const std::vector<std::array<int, 2>> sizes =
         tiny ? std::vector<std::array<int, 2>>{{320, 180}}
              : std::vector<std::array<int, 2>>{{1280, 720}, {1920, 1080}};
     if (tiny)
         repeats = 1;
     {
-        const std::time_t now = std::time(nullptr);
-        char date[32];
-        std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-        note(fmt::format("sphclip_bench_surface, {}", date));
+        note(fmt::format("sphclip_bench_surface, {}", bench::now_utc()));
         note(fmt::format("{} cores (nproc), {}", std::thread::hardware_concurrency(),
-                         first_line_with("/proc/cpuinfo", "model name")));
-        note(fmt::format("load average (1, 5, 15 min) at the start: {}", load_average()));
+                         bench::cpu_model()));
+        note(fmt::format("load average (1, 5, 15 min) at the start: {}", bench::load_average()));
         note(fmt::format("render.surface: voxel {}, radius {} (x spacing), smoothing {}",
                          surface.voxel, surface.radius, surface.smoothing));
     }
     emit("backend,particles,width,height,vertices,triangles,reconstruct_ms,colour_ms,"
          "draw_ms,readback_ms,frame_ms,peak_rss_mib");
-    const std::vector<std::string> backends = split(backends_arg);
+    const std::vector<std::string> backends = bench::split_list(options.backends);
     for (std::size_t n : counts) {
         const double box = 0.1, spacing = box / std::ceil(std::cbrt(double(n)));
         const Snapshot frame = make_fluid(n, spacing);
@@ -194,7 +140,7 @@ int main(int argc, char** argv) {
                 r.width = width;
                 r.height = height;
                 r.dimension = 3;
-                r.style = "surface";
+                r.style = FluidStyle::surface;
                 r.surface = surface;
                 r.spacing = spacing;
                 r.radius = 0.5 * spacing;
@@ -226,8 +172,9 @@ int main(int argc, char** argv) {
                 }
                 emit(fmt::format("{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.0f}",
                                  backend, n, width, height, vertices, triangles,
-                                 median(reconstruct), median(colour), median(draw),
-                                 median(readback), median(total), peak_rss_mib()));
+                                 bench::median(reconstruct), bench::median(colour),
+                                 bench::median(draw), bench::median(readback), bench::median(total),
+                                 bench::peak_rss_mib()));
                 if (!png_folder.empty())
                     write_png(std::filesystem::path(png_folder) /
                                   fmt::format("surface_{}_{}_{}x{}.png", backend, n, width, height),

@@ -13,32 +13,15 @@ import csv
 import math
 import os
 import struct
-import subprocess
-import sys
 import tempfile
 
-try:
-    import vtk
-except ImportError:
-    print("skipped: VTK's Python module is not installed (apt-get install python3-vtk9)")
-    sys.exit(77)
-
-exe, source = sys.argv[1], sys.argv[2]
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
+from vtk_checks import check, finish, vtk
+import vtk_checks
 
 
 def run(scene, out, extra, duration="0.04"):
-    args = [exe, "run", os.path.join(source, "scenes", scene), "--out", out, "--quiet",
-            "--no-png", "--no-mp4", "--threads", "1", "--duration", duration, "--fps", "50",
-            "--export", "surface", "--export", "csv"]
-    return subprocess.run(args + extra, env=dict(os.environ, OMP_WAIT_POLICY="passive"),
-                          capture_output=True, text=True)
+    return vtk_checks.run(scene, out, ["--export", "surface", "--export", "csv"] + extra,
+                          duration, capture_output=True, text=True)
 
 
 def read_header(path):
@@ -123,7 +106,4 @@ with tempfile.TemporaryDirectory() as tmp:
         check(os.path.exists(os.path.join(out, "surface", "frame_00000.vdb")) == (dim == 3),
               f"{scene}: a .vdb only in 3D")
 
-if failures:
-    print(f"{len(failures)} failure(s)")
-    sys.exit(1)
-print("surface exports read by VTK: ok")
+finish("surface exports read by VTK: ok")

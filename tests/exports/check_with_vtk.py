@@ -10,33 +10,16 @@ usage: check_with_vtk.py PATH/TO/sphclip SOURCE_DIR"""
 import csv
 import math
 import os
-import subprocess
-import sys
 import tempfile
 import xml.etree.ElementTree as ET
 
-try:
-    import vtk
-except ImportError:
-    print("skipped: VTK's Python module is not installed (apt-get install python3-vtk9)")
-    sys.exit(77)
-
-exe, source = sys.argv[1], sys.argv[2]
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
+from vtk_checks import check, finish, vtk
+import vtk_checks
 
 
 def run(scene, out, exports, extra):
-    args = [exe, "run", os.path.join(source, "scenes", scene), "--out", out, "--quiet",
-            "--no-png", "--no-mp4", "--threads", "1", "--duration", "0.04", "--fps", "50"]
-    for e in exports:
-        args += ["--export", e]
-    subprocess.run(args + extra, check=True, env=dict(os.environ, OMP_WAIT_POLICY="passive"))
+    args = [a for e in exports for a in ("--export", e)]
+    vtk_checks.run(scene, out, args + extra, check=True)
 
 
 def read_vtp(path):
@@ -103,7 +86,4 @@ with tempfile.TemporaryDirectory() as tmp:
         print(f"{scene}: {len(datasets)} frames of {len(rows)} particles read by VTK "
               f"{vtk.vtkVersion.GetVTKVersion()}, binary and ascii, equal to the CSV")
 
-if failures:
-    print(f"{len(failures)} check(s) failed")
-    sys.exit(1)
-print("all VTK checks passed")
+finish("all VTK checks passed")

@@ -8,6 +8,7 @@
 #include "io/scene.hpp"
 #include "sph/solvers/solver.hpp"
 
+#include <algorithm>
 #include <tuple>
 
 namespace sph {
@@ -70,6 +71,16 @@ std::optional<KeyProblem> effect_problem(const S& settings) {
         return std::nullopt;
 }
 
+// The dynamic viscosity (Pa.s) by which an effect limits the time step, as
+// its settings declare (diffusion_viscosity()); 0 where they declare none.
+template <class S>
+double effect_diffusion_viscosity(const S& settings) {
+    if constexpr (requires { settings.diffusion_viscosity(); })
+        return settings.diffusion_viscosity();
+    else
+        return 0;
+}
+
 // Calls f(entry) for every registered effect, in order.
 template <class F>
 void for_each_registered_effect(F&& f) {
@@ -83,6 +94,16 @@ void for_each_effect(const Scene::Effects& effects, F&& f) {
         if (const auto& settings = effects.*entry.field)
             f(*settings);
     });
+}
+
+// The largest viscosity by which the scene's effects limit the time step;
+// 0: none (the scene-side twin of diffusion_viscosity(EffectList)).
+inline double diffusion_viscosity(const Scene::Effects& effects) {
+    double mu = 0;
+    for_each_effect(effects, [&](const auto& settings) {
+        mu = std::max(mu, effect_diffusion_viscosity(settings));
+    });
+    return mu;
 }
 
 } // namespace sph

@@ -17,14 +17,14 @@ const KeyTable<Scene::Render>& render_keys() {
          .min = 1,
          .max = 16384},
         {.path = "colour",
-         .field = &S::colour,
+         .field = enum_field<&S::colour>(),
          .doc = "Field the particles are coloured by.",
-         .choices = {"velocity", "density", "pressure"}},
+         .choices = choice_names<ColourField>()},
         {.path = "colour_map",
-         .field = &S::colour_map,
+         .field = auto_enum_field<&S::colour_map>(),
          .doc = "Colour map; auto: viridis for speed, diverging around rho0 for density, turbo "
                 "for pressure.",
-         .choices = {"auto", "viridis", "turbo", "diverging"}},
+         .choices = auto_choice_names<ColourMap>()},
         {.path = "range",
          .field = &S::range,
          .unit = "field unit",
@@ -35,17 +35,17 @@ const KeyTable<Scene::Render>& render_keys() {
                 "of its particles outside warns.",
          .absent = "from the scene"},
         {.path = "spheres",
-         .field = &S::spheres,
+         .field = enum_field<&S::spheres>(),
          .doc = "How spheres are drawn: ray-cast impostors (fast) or the seed's instanced "
                 "meshes.",
-         .choices = {"impostor", "mesh"}},
+         .choices = choice_names<SphereDrawing>()},
         {.path = "style",
-         .field = &S::style,
+         .field = enum_field<&S::style>(),
          .doc = "How the fluid is drawn: spheres, one per particle; surface, the free surface "
                 "reconstructed each frame from the particles (3D: an OpenVDB level set meshed "
                 "and shaded as water; 2D: the filled region with its outline) and coloured by "
                 "the colour field at its vertices (render.surface.*).",
-         .choices = {"spheres", "surface"}},
+         .choices = choice_names<FluidStyle>()},
         {.path = "cull_buried",
          .field = &S::cull_buried,
          .doc = "3D: skip particles buried under two full layers of fluid (a camera outside the "
@@ -94,14 +94,14 @@ const KeyTable<Scene::Render>& render_keys() {
          .doc = "3D: the domain's walls drawn as faint glass (more opaque at grazing angles) "
                 "besides its edges; false: the edges only."},
         {.path = "background",
-         .field = &S::background,
+         .field = enum_field<&S::background>(),
          .doc = "The backdrop and overlay palette: light (a pale grey gradient, where every "
                 "colour map's dark end stays visible) or dark (near-black, light text).",
-         .choices = {"light", "dark"}},
+         .choices = choice_names<Background>()},
         {.path = "backend",
-         .field = &S::backend,
+         .field = auto_enum_field<&S::backend>(),
          .doc = "Headless GL context.",
-         .choices = {"auto", "egl", "osmesa"}},
+         .choices = auto_choice_names<GlBackend>()},
     };
     return keys;
 }
@@ -137,13 +137,13 @@ const KeyTable<Scene::Render::Camera>& camera_keys() {
     using S = Scene::Render::Camera;
     static const KeyTable<S> keys{
         {.path = "fit",
-         .field = &S::fit,
+         .field = enum_field<&S::fit>(),
          .doc = "What the default camera frames: domain (the tank, fixed), fluid (where the "
                 "fluid starts: its blocks and emitters, fixed) or follow (the fluid's bounds "
                 "over time, smoothed: it widens at once to keep every particle in view and "
                 "narrows with a 0.5 s time constant). 2D: the region of the plane in view; 3D: "
                 "the distance and target at which the box fills the frame at `fov`.",
-         .choices = {"domain", "fluid", "follow"}},
+         .choices = choice_names<CameraFit>()},
         {.path = "position",
          .field = &S::position,
          .unit = "m",

@@ -9,11 +9,11 @@
 
 namespace sph {
 
-std::vector<float> particle_scalars(const Snapshot& frame, std::string_view field) {
+std::vector<float> particle_scalars(const Snapshot& frame, ColourField field) {
     const std::size_t n = frame.size();
     const int dim = frame.dimension;
     std::vector<float> out(n);
-    if (field == "velocity") {
+    if (field == ColourField::velocity) {
         for (std::size_t i = 0; i < n; ++i) {
             double v2 = 0;
             for (int a = 0; a < dim; ++a)
@@ -21,14 +21,15 @@ std::vector<float> particle_scalars(const Snapshot& frame, std::string_view fiel
             out[i] = float(std::sqrt(v2));
         }
     } else {
-        const std::vector<Real>& values = field == "density" ? frame.density : frame.pressure;
+        const std::vector<Real>& values =
+            field == ColourField::density ? frame.density : frame.pressure;
         for (std::size_t i = 0; i < n && i < values.size(); ++i)
             out[i] = float(values[i]);
     }
     return out;
 }
 
-Surface reconstruct_surface(const Snapshot& frame, std::string_view field, double spacing,
+Surface reconstruct_surface(const Snapshot& frame, ColourField field, double spacing,
                             const SurfaceSettings& settings) {
     Surface s;
     const auto start = Clock::now();

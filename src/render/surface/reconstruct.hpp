@@ -11,6 +11,7 @@
 // filled. The colour field is then carried from the particles to the
 // vertices (vertex_colours.hpp).
 
+#include "io/render_choices.hpp"
 #include "render/surface/surface_mesh.hpp"
 #include "sph/snapshot.hpp"
 
@@ -25,12 +26,12 @@ bool surface_3d_available();
 
 // The scalar each particle is coloured by: `field` velocity (the speed),
 // density or pressure, as the spheres are.
-std::vector<float> particle_scalars(const Snapshot& frame, std::string_view field);
+std::vector<float> particle_scalars(const Snapshot& frame, ColourField field);
 
 // The frame's surface, coloured by `field`; `spacing` the particle spacing
 // (m). Throws std::runtime_error for a 3D frame where surface_3d_available()
 // is false.
-Surface reconstruct_surface(const Snapshot& frame, std::string_view field, double spacing,
+Surface reconstruct_surface(const Snapshot& frame, ColourField field, double spacing,
                             const SurfaceSettings& settings);
 
 // 3D only (level_set_vdb.cpp): the level set's narrow band, and the mesh of

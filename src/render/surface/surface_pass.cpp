@@ -18,7 +18,9 @@ constexpr double outline_px = 2.0;
 
 SurfacePass::SurfacePass(const RenderSettings& s)
     : range_{float(s.range[0]), float(s.range[1])},
-      program_(gl::link_program(shaders::surface_vert, shaders::surface_frag, shaders::lighting)),
+      // The solids' vertex shader, with the colour field per vertex.
+      program_(gl::link_program(shaders::solid_vert, shaders::surface_frag,
+                                "#define VERTEX_SCALAR\n" + std::string(shaders::lighting))),
       vao_(gl::VertexArray::generate()), vertices_(gl::Buffer::generate()),
       indices_(gl::Buffer::generate()), flat_(s.dimension == 2) {
     glBindVertexArray(vao_.id());

@@ -37,6 +37,9 @@ struct ViscositySettings {
     EffectCapabilities capabilities() const {
         return {.reads_neighbour_lists = model != ViscosityModel::morris};
     }
+    // Either model diffuses momentum at mu: the time step's diffusion
+    // condition (time_step.hpp), as the built effect's diffusion_viscosity().
+    double diffusion_viscosity() const { return mu; }
     // How the scene's checks name it.
     std::string label() const {
         return std::string("effects.viscosity model ") +

@@ -68,7 +68,7 @@ print(f"imbalance (max / mean): particles {m['imbalance']['particles_mean']:.3f}
       f"{m['imbalance']['seconds_mean']:.3f} (worst {m['imbalance']['seconds_max']:.3f})")
 for name, r in (("1 rank x 2 threads", plain[0]), ("2 ranks x 1 thread, rank 0", ranks[0])):
     print(f"{name}: " + ", ".join(f"{st['name']} {st['seconds']:.2f} s"
-                                  for st in r["stages"] if st["seconds"] > 0.005))
+                                  for st in r["stages"] if st.get("seconds", 0) > 0.005))
 same = hashes("plain") == hashes("ranks")
 print(f"state hashes of the two layouts: {'identical' if same else 'DIFFERENT'}")
 sys.exit(0 if same else 1)

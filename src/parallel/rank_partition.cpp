@@ -25,19 +25,29 @@ namespace {
 // than that (a far stray particle) puts every particle in the halo, which
 // is exact, only slower.
 constexpr std::size_t max_cells_per_particle = 64;
-// After each rank's results in the gather: its owned + halo count and its
-// solver seconds, so the balance is measured without another message.
-constexpr std::size_t trailer = 2;
+// After each rank's results in the gather: its owned + halo count, its
+// solver seconds and the halo bytes it received, so the balance and the
+// traffic are measured without another message.
+constexpr std::size_t trailer = 3;
+// Point-to-point tags: a rank's halo request (the particles it needs from
+// an owner), then each exchange of their densities in the step.
+constexpr int request_tag = 24;
+constexpr int densities_tag = 25;
 // Halo cells per reach along an axis: the halo is the owned particles' cells
 // grown by this many cells, so it holds particles up to (1 + 1 / 3) reach
 // away rather than 2 reaches with cells as large as the reach.
 constexpr int halo_subdivision = 3;
 
 template <int D>
-class RankPartition final : public Partition<D> {
+class RankPartition final : public Partition<D>, public HaloExchange<D> {
   public:
     RankPartition(int hops, bool whole_cells)
         : hops_(hops), whole_cells_(whole_cells), rank_(rank()), ranks_(size()) {
+        const auto p = std::size_t(ranks_);
+        need_.assign(p, 0);
+        need_first_.assign(p, 0);
+        give_.assign(p, 0);
+        give_first_.assign(p + 1, 0);
         first_.resize(std::size_t(ranks_) + 1);
         counts_.resize(std::size_t(ranks_));
         displacements_.resize(std::size_t(ranks_));
@@ -55,26 +65,75 @@ class RankPartition final : public Partition<D> {
         // before it drifts by them: nothing bounds that drift beforehand, so
         // this step holds every particle.
         const bool current = stepped_ && n == stepped_size_;
-        select_local(params, dt, state, params.integrator == Integrator::verlet && !current);
-        copy_local(state);
+        {
+            auto timed = context.time(Stage::rank_halo);
+            select_local(params, dt, state, params.integrator == Integrator::verlet && !current);
+            plan_halo();
+            copy_local(state);
+        }
         if (auto* explicit_solver = dynamic_cast<ExplicitSolver<D>*>(&solver))
             explicit_solver->set_accelerations_current(current, local_.size());
         const auto start = std::chrono::steady_clock::now();
-        // A rank that owns nothing (fewer particles than ranks) steps nothing.
+        // A rank that owns nothing (fewer particles than ranks) steps
+        // nothing; it holds no halo either, so no rank exchanges with it.
+        context.halo = this;
         StepReport report = first_[std::size_t(rank_) + 1] > first_[std::size_t(rank_)]
                                 ? solver.step(params, dt, local_, context)
                                 : StepReport{};
+        context.halo = nullptr;
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stepped_ = true;
         stepped_size_ = n;
-        share_results(state, seconds);
+        {
+            auto timed = context.time(Stage::rank_gather);
+            share_results(state, seconds);
+        }
         // Each rank's pushes, halo included: a particle near a rank's edge is
         // pushed on every rank that holds it (docs/mpi.md).
         std::uint64_t pushes = 0;
         MPI_Allreduce(&report.obstacle_pushes, &pushes, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
         report.obstacle_pushes = pushes;
         return report;
+    }
+
+    // The halo's densities and pressures from their owners, point to point
+    // (non-blocking): each rank sends its owned particles that another
+    // rank's halo holds, as that rank asked in plan_halo().
+    void share_densities(State<D>& state) override {
+        const auto p = std::size_t(ranks_);
+        give_values_.resize(2 * give_index_.size());
+        for (std::size_t k = 0; k < give_index_.size(); ++k) {
+            give_values_[2 * k] = state.density[give_index_[k]];
+            give_values_[2 * k + 1] = state.pressure[give_index_[k]];
+        }
+        need_values_.resize(2 * (local_.size() - owned_in_local_));
+        requests_.clear();
+        std::size_t at = 0;
+        for (std::size_t s = 0; s < p; ++s) {
+            if (need_[s] == 0)
+                continue;
+            requests_.emplace_back();
+            MPI_Irecv(need_values_.data() + at, int(2 * need_[s]), MPI_DOUBLE, int(s),
+                      densities_tag, MPI_COMM_WORLD, &requests_.back());
+            at += 2 * std::size_t(need_[s]);
+        }
+        for (std::size_t r = 0; r < p; ++r) {
+            if (give_[r] == 0)
+                continue;
+            requests_.emplace_back();
+            MPI_Isend(give_values_.data() + 2 * give_first_[r], int(2 * give_[r]), MPI_DOUBLE,
+                      int(r), densities_tag, MPI_COMM_WORLD, &requests_.back());
+        }
+        MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+        at = 0;
+        for (std::size_t s = 0; s < p; ++s)
+            for (int k = 0; k < need_[s]; ++k, at += 2) {
+                const std::size_t j = need_first_[s] + std::size_t(k);
+                state.density[j] = need_values_[at];
+                state.pressure[j] = need_values_[at + 1];
+            }
+        step_halo_bytes_ += double(at * sizeof(Real));
     }
 
     nlohmann::json report() const override {
@@ -84,8 +143,11 @@ class RankPartition final : public Partition<D> {
             {"threads_per_rank", omp_get_max_threads()},
             {"decomposition",
              "contiguous ranges of the sorted grid's cell order (Morton curve), cut by particle "
-             "count every step; whole state on every rank, owned results all-gathered"},
+             "count every step; whole state on every rank; each rank steps its own particles and "
+             "a halo, whose densities its owners send point to point mid-step; owned results "
+             "all-gathered"},
             {"halo_support_radii", hops_},
+            {"halo_bytes_received_per_step", halo_bytes_ / steps / ranks_},
             {"steps", steps_},
             {"owned_per_rank", last_owned_},
             {"owned_and_halo_per_rank", last_local_},
@@ -96,6 +158,8 @@ class RankPartition final : public Partition<D> {
               {"seconds_max", time_imbalance_max_}}},
             {"halo_particles_per_step", double(halo_sum_) / steps},
             {"gather_bytes_received_per_step", double(received_bytes_) / steps},
+            {"bytes_received_per_step",
+             halo_bytes_ / steps / ranks_ + double(received_bytes_) / steps},
             {"gather_bytes_received", received_bytes_},
             {"migration_bytes_per_step", 0},
             {"migrations", migrations_},
@@ -143,6 +207,8 @@ class RankPartition final : public Partition<D> {
         const Real reach =
             Real(hops_ + (whole_cells_ ? 1 : 0)) * (params.h * (1 + 1e-5) + 2 * move) * (1 + 1e-6);
         local_index_.clear();
+        if (begin == end)
+            return; // owns nothing: steps nothing, needs no halo
         const Real cell_size = reach / halo_subdivision;
         std::size_t cells = 1;
         std::array<std::size_t, D> dims{};
@@ -201,6 +267,58 @@ class RankPartition final : public Partition<D> {
         }
     }
 
+    // Which owner sends each halo particle's densities (need_, need_first_:
+    // the halo's runs in local_index_, one per owner, the ranges being
+    // contiguous), and which owned particles this rank sends to each rank
+    // (give_index_, as positions in local_): each rank tells each owner the
+    // particles it needs, by global index.
+    void plan_halo() {
+        const auto p = std::size_t(ranks_);
+        const std::size_t begin = first_[std::size_t(rank_)];
+        owned_in_local_ = 0;
+        std::fill(need_.begin(), need_.end(), 0);
+        std::size_t owner = 0;
+        for (std::size_t k = 0; k < local_index_.size(); ++k) {
+            const std::size_t i = local_index_[k];
+            while (i >= first_[owner + 1])
+                ++owner;
+            if (owner == std::size_t(rank_)) {
+                if (owned_in_local_++ == 0)
+                    owned_offset_ = k;
+                continue;
+            }
+            if (need_[owner]++ == 0)
+                need_first_[owner] = k;
+        }
+        MPI_Alltoall(need_.data(), 1, MPI_INT, give_.data(), 1, MPI_INT, MPI_COMM_WORLD);
+        for (std::size_t r = 0; r < p; ++r)
+            give_first_[r + 1] = give_first_[r] + std::size_t(give_[r]);
+        give_index_.resize(give_first_[p]);
+        requests_.clear();
+        for (std::size_t r = 0; r < p; ++r) {
+            if (give_[r] == 0)
+                continue;
+            requests_.emplace_back();
+            MPI_Irecv(give_index_.data() + give_first_[r], give_[r], MPI_UINT32_T, int(r),
+                      request_tag, MPI_COMM_WORLD, &requests_.back());
+        }
+        for (std::size_t s = 0; s < p; ++s) {
+            if (need_[s] == 0)
+                continue;
+            requests_.emplace_back();
+            MPI_Isend(local_index_.data() + need_first_[s], need_[s], MPI_UINT32_T, int(s),
+                      request_tag, MPI_COMM_WORLD, &requests_.back());
+        }
+        MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+        // Global index to position in local_: the owned particles are one run.
+        for (auto& i : give_index_)
+            i = static_cast<std::uint32_t>(owned_offset_ + (i - begin));
+        std::size_t needed = 0;
+        for (const int count : need_)
+            needed += std::size_t(count);
+        step_halo_bytes_ = double(needed * sizeof(std::uint32_t));
+    }
+
     void copy_local(const State<D>& state) {
         const std::size_t m = local_index_.size();
         local_.resize(m);
@@ -244,6 +362,7 @@ class RankPartition final : public Partition<D> {
         }
         send_[owned * stride] = double(local_.size());
         send_[owned * stride + 1] = seconds;
+        send_[owned * stride + 2] = step_halo_bytes_;
         for (int r = 0; r < ranks_; ++r) {
             const std::size_t count =
                 (first_[std::size_t(r) + 1] - first_[std::size_t(r)]) * stride + trailer;
@@ -275,6 +394,7 @@ class RankPartition final : public Partition<D> {
             last_owned_[std::size_t(r)] = to - from;
             last_local_[std::size_t(r)] = std::uint64_t(tail[0]);
             seconds_[std::size_t(r)] = tail[1];
+            halo_bytes_ += tail[2];
         }
         record_balance(n, owned);
         if (rank_ == 0)
@@ -335,6 +455,14 @@ class RankPartition final : public Partition<D> {
     State<D> local_;
     std::vector<Real> send_, receive_;
     std::vector<int> counts_, displacements_;
+    // The halo exchange (plan_halo, share_densities).
+    std::vector<int> need_, give_;
+    std::vector<std::size_t> need_first_, give_first_;
+    std::vector<std::uint32_t> give_index_;
+    std::vector<Real> give_values_, need_values_;
+    std::vector<MPI_Request> requests_;
+    std::size_t owned_offset_ = 0, owned_in_local_ = 0;
+    double step_halo_bytes_ = 0, halo_bytes_ = 0;
     bool stepped_ = false;
     std::size_t stepped_size_ = 0;
     // Balance and traffic, for run.json.
@@ -373,10 +501,12 @@ make_rank_partition(const Params<D>& params, std::string_view solver_name,
                          "single precision over MPI ranks needs wall particles (solver.walls "
                          "particles): with reflecting walls each rank's grid would differ; use "
                          "solver.precision double, or run on one rank");
-    int hops = 2; // density, then the forces that read the neighbours' densities
+    // The chain of neighbour sums after the halo exchange of densities: the
+    // forces, which read the neighbours' densities (their owners'), ...
+    int hops = 1;
     for (const auto& effect : effects)
         if (dynamic_cast<const SurfaceTension<D>*>(effect.get()))
-            hops = 3; // normals from densities, then forces from normals
+            hops = 2; // ... or normals from densities, then forces from normals
     return std::make_unique<RankPartition<D>>(hops, single);
 }
 

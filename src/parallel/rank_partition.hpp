@@ -8,17 +8,22 @@
 // memory positions [N r / P, N (r + 1) / P): a contiguous range of the
 // Morton curve, re-cut by particle count every step (re-cutting moves no
 // data, every rank holding every particle). A step runs the solver on the
-// owned particles plus a halo, the particles within K support radii
-// (K = the chain of neighbour sums one step makes: 2, or 3 with surface
-// tension) plus the distance a step can move them, kept in the global
-// memory order; the owned particles' results are then all-gathered
-// (non-blocking MPI_Iallgatherv) into every rank's state.
+// owned particles plus a halo, the particles within K support radii plus
+// the distance a step can move them, kept in the global memory order.
+// After the density stage the halo's densities and pressures are those their
+// owners computed, sent point to point (MPI_Isend/Irecv, StepContext's
+// HaloExchange), so K counts the neighbour sums after it: 1 (the forces), or
+// 2 with surface tension (normals, then forces from normals). The owned
+// particles' results are then all-gathered (non-blocking MPI_Iallgatherv)
+// into every rank's state.
 //
 // Same bits on any number of ranks: an owned particle's neighbour rows list
 // the same neighbours in the same (memory) order as on one rank, so every
 // neighbour sum adds the same terms in the same order
-// (sph/neighbours/neighbour_sum.hpp); the halo's own results, computed
-// from incomplete neighbourhoods, are never kept. Whatever a step reduces
+// (sph/neighbours/neighbour_sum.hpp); the halo's densities are replaced by
+// their owners' (complete, so the one-process bits) before a sum reads them,
+// and the halo's other results, from incomplete neighbourhoods, are never
+// kept. Whatever a step reduces
 // over all particles (the adaptive dt, the watchdog, the frame statistics)
 // is reduced over the gathered whole state, the same array in the same
 // order on every rank, so no global reduction depends on the rank count.

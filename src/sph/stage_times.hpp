@@ -37,6 +37,12 @@ enum class Stage : std::uint8_t {
     time_step, // the stability conditions
     watchdog,  // the checks after a step, the state saved for a retry
     reorder,   // the spatial sort
+    // Over MPI ranks (src/parallel/): choosing a rank's halo and copying its
+    // particles, the halo's densities from their owners mid-step, the
+    // owned results shared with every rank after it.
+    rank_halo,
+    halo_exchange,
+    rank_gather,
     // Around the step (the run command).
     frame_statistics,
     render,
@@ -49,14 +55,25 @@ enum class Stage : std::uint8_t {
 
 // The names the stage table and run.json's `stages` print, by Stage.
 inline constexpr std::array<std::string_view, std::size_t(Stage::count)> stage_names{
-    "neighbour search", "boundary neighbours",
-    "density",          "pressure",
-    "divergence solve", "pressure solve",
-    "integration",      "time step",
-    "watchdog",         "reorder",
-    "frame statistics", "render",
-    "readback",         "encode wait",
-    "output",           "encode"};
+    "neighbour search",
+    "boundary neighbours",
+    "density",
+    "pressure",
+    "divergence solve",
+    "pressure solve",
+    "integration",
+    "time step",
+    "watchdog",
+    "reorder",
+    "rank halo",
+    "halo exchange",
+    "rank gather",
+    "frame statistics",
+    "render",
+    "readback",
+    "encode wait",
+    "output",
+    "encode"};
 
 constexpr std::string_view stage_name(Stage stage) {
     return stage_names[std::size_t(stage)];

@@ -4,7 +4,8 @@
 # each REPEAT times (default 3); prints, per layout, the median wall time of
 # the run and the simulation's particle-steps per second, and for the ranks
 # the halo (particles each rank steps besides its own), the bytes each rank
-# receives per step and the measured imbalance, from run.json. Also checks
+# receives per step (halo exchange, gather) and the measured imbalance, from
+# run.json, and rank 0's stage table (where a rank's time goes). Also checks
 # that the two layouts' state hashes agree. No figure is asserted.
 #
 #   tests/bench/mpi_ranks.sh build/sphclip [SCENE] [DURATION] [REPEAT]
@@ -59,11 +60,15 @@ for name, rs in (("1 rank x 2 threads", plain), ("2 ranks x 1 thread", ranks)):
 m = ranks[0]["mpi"]
 print(f"ranks: owned {m['owned_per_rank']}, owned + halo {m['owned_and_halo_per_rank']}, "
       f"halo {m['halo_particles_per_step']:.0f} particles per rank-step, "
+      f"halo exchange {m['halo_bytes_received_per_step']:.0f} and "
       f"gather {m['gather_bytes_received_per_step']:.0f} bytes received per rank-step, "
       f"migration {m['migration_bytes_per_step']} bytes per step")
 print(f"imbalance (max / mean): particles {m['imbalance']['particles_mean']:.3f} "
       f"(worst {m['imbalance']['particles_max']:.3f}), solver seconds "
       f"{m['imbalance']['seconds_mean']:.3f} (worst {m['imbalance']['seconds_max']:.3f})")
+for name, r in (("1 rank x 2 threads", plain[0]), ("2 ranks x 1 thread, rank 0", ranks[0])):
+    print(f"{name}: " + ", ".join(f"{st['name']} {st['seconds']:.2f} s"
+                                  for st in r["stages"] if st.get("seconds", 0) > 0.005))
 same = hashes("plain") == hashes("ranks")
 print(f"state hashes of the two layouts: {'identical' if same else 'DIFFERENT'}")
 sys.exit(0 if same else 1)

@@ -85,6 +85,9 @@ if ranks > 1:
     mpi = run["mpi"]
     assert len(mpi["owned_and_halo_per_rank"]) == ranks, mpi
     assert mpi["steps"] > 0 and mpi["gather_bytes_received_per_step"] > 0, mpi
+    # The halo's densities came from their owners (the halo exchange).
+    assert mpi["halo_bytes_received_per_step"] > 0, mpi
+    assert any(s["name"] == "halo exchange" for s in run["stages"]), run["stages"]
     print(f"{sys.argv[1]}: imbalance {mpi['imbalance']}, migrations {mpi['migrations']}, "
           f"most ranks one particle visited {mpi['most_ranks_visited']}")
 PY

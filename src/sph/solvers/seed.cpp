@@ -28,6 +28,8 @@ void SeedSolver<D>::compute_accelerations(const Params<D>& params, State<D>& sta
             compute_density(params, kernel, context.neighbours, state);
             compute_pressure_linear(params, state);
         }
+        // Over ranks: the halo's densities and pressures from their owners.
+        context.share_halo_densities(state);
         // 3. The seed's pair force f_ij, a = f / rho: its pressure half, and
         // its viscous half (effects/seed_viscosity.hpp) when the scene has
         // it, in the same pass over the pairs (timed as "pressure").

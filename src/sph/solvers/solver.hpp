@@ -19,6 +19,18 @@
 
 namespace sph {
 
+// Over MPI ranks (src/parallel/, docs/mpi.md) a step holds its rank's own
+// particles and a halo around them. After the density stage the halo's
+// densities and pressures are replaced by those their owners computed, from
+// complete neighbourhoods: the sums that follow then need a halo one support
+// radius wide, not one per neighbour sum of the step.
+template <int D>
+class HaloExchange {
+  public:
+    virtual ~HaloExchange() = default;
+    virtual void share_densities(State<D>& state) = 0;
+};
+
 // What a step needs besides parameters and state: the neighbour search and the
 // lists it fills (reused every step), the boundary particles when there are
 // any, the scene's effects and its boundaries.
@@ -37,6 +49,17 @@ struct StepContext {
     // The boundary set again, writable, when it holds paddles; null when
     // nothing in it moves.
     BoundaryParticles<D>* moving_boundary = nullptr;
+    // The ranks' halo exchange; null in one process.
+    HaloExchange<D>* halo = nullptr;
+
+    // The halo particles' densities and pressures from the ranks that own
+    // them (HaloExchange); nothing in one process. After the density stage.
+    void share_halo_densities(State<D>& state) {
+        if (!halo)
+            return;
+        auto timed = time(Stage::halo_exchange);
+        halo->share_densities(state);
+    }
 
     // Moves the boundary particles that move (the paddles') to where their
     // motions have them at time t, with their velocities.

@@ -59,6 +59,8 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
         density_and_pressure(params, kernel, context, single, state);
+        // Over ranks: the halo's densities and pressures from their owners.
+        context.share_halo_densities(state);
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij) grad W,
         // walls included, and Morris's viscosity.
         auto timed = context.time(Stage::pressure);

@@ -164,6 +164,46 @@ TEST_CASE("fit domain: the 3D tank fills its rectangle, the bar right beside it"
     CHECK(l.scene.width < 640 - 80);
 }
 
+TEST_CASE("a fixed 3D camera, distant or close, leaves no dead band beside the tank", "[render]") {
+    // Was: the rectangle took the default camera's view of the domain, so a
+    // distant camera (the README's first clip) left bands at both sides of
+    // the tank and a close one cut the tank off in a narrow rectangle.
+    RenderSettings s = tank_3d();
+    s.camera_fixed = true;
+    s.camera_target = 0.5 * (s.domain_min + s.domain_max);
+    const OverlayRoom room{.top = 20, .right = 80};
+    const FrameLayout whole = layout_frame(s.width, s.height, room);
+    struct Case {
+        const char* name;
+        glm::dvec3 position;
+        double fov;
+    };
+    for (const Case& c :
+         {Case{"distant, from the side", {1.2, 0.6, -0.9}, 40},
+          Case{"distant, end on", {0.2, 0.3, 1.5}, 30}, Case{"close-up", {0.25, 0.15, 0.3}, 40}}) {
+        INFO(c.name);
+        s.camera_position = c.position;
+        s.fov = c.fov;
+        const FrameLayout l = layout_for(s, room);
+        CameraRig rig(s, l.scene.width / l.scene.height);
+        const Camera camera =
+            make_camera(s, rig.pose(box_points(3, s.domain_min, s.domain_max, 0)), l);
+        const glm::dvec2 most = reach(camera, l, s.domain_min, s.domain_max);
+        if (most.y > 1) {
+            // Cut off above and below: the room is the scene's, whole.
+            CHECK(l.scene.width == Approx(whole.scene.width));
+            CHECK(l.scene.height == Approx(whole.scene.height));
+            CHECK(most.x > 1);
+        } else {
+            // The tank's image reaches the rectangle's sides (the 3% margin).
+            CHECK(most.x == Approx(0.97).margin(0.002));
+        }
+        // The bar right beside the scene, the group centred.
+        CHECK(l.right.x == Approx(l.scene.right()));
+        CHECK(l.scene.x - 0 == Approx(s.width - l.right.right()).margin(1));
+    }
+}
+
 TEST_CASE("fit fluid and follow frame the fluid, not the tank", "[render]") {
     RenderSettings s = tank_3d();
     s.fluid_min = glm::dvec3(0);

@@ -1,5 +1,6 @@
 // render.camera's keys (src/io/keys/render_keys.cpp): keys of the other
-// dimension, a camera looking at itself and bad keyframes are refused, each
+// dimension (the camera's, and the 3D-only light, floor and tank keys), a
+// camera looking at itself and bad keyframes are refused, each
 // naming its key; paths and orbits read back from run.json's scene. And end
 // to end: the camera run.json records for a clip's last frame, pasted into
 // the scene, draws that frame again, byte for byte.
@@ -11,6 +12,7 @@
 #include "support/text.hpp"
 
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -65,6 +67,15 @@ TEST_CASE("camera keys of the other dimension, and bad cameras, name their key",
         {scene_2d, "/render/camera/fov", "30", "render.camera.fov", "3D"},
         {scene_2d, "/render/camera/up", "[0, 0, 1]", "render.camera.up", "3D"},
         {scene_2d, "/render/camera/orbit", "{\"turns\": 1}", "render.camera.orbit", "3D"},
+        {scene_2d, "/render/camera/aspect", "1.5", "render.camera.aspect", "3D"},
+        {scene_3d, "/render/camera/aspect", "0", "render.camera.aspect", "greater than 0"},
+        // Were silently ignored too: the light's, the floor's and the tank's
+        // keys, and the buried particles' skip, all 3D only.
+        {scene_2d, "/render/shadows", "true", "render.shadows", "3D key"},
+        {scene_2d, "/render/ambient_occlusion", "true", "render.ambient_occlusion", "3D key"},
+        {scene_2d, "/render/floor", "true", "render.floor", "3D key"},
+        {scene_2d, "/render/tank", "false", "render.tank", "3D key"},
+        {scene_2d, "/render/cull_buried", "false", "render.cull_buried", "3D key"},
         {scene_3d, "/render/camera/centre", "[0.05, 0.03]", "render.camera.centre", "2D"},
         {scene_3d, "/render/camera/height", "0.1", "render.camera.height", "2D"},
         // Issue 18: a camera at its target has no direction.
@@ -135,11 +146,39 @@ TEST_CASE("a camera path and an orbit read back from the resolved scene", "[scen
         const sph::RenderSettings r = sph::make_render_settings(again);
         CHECK_FALSE(r.camera_fixed);
     }
-    // A 2D scene's resolved camera holds only 2D keys: it reads back.
+    // A 2D scene's resolved camera and render hold only 2D keys: it reads back.
     const sph::Scene flat = sph::parse_scene(scene_2d, "test.json", {});
     const json resolved = sph::to_json(flat);
     CHECK_FALSE(resolved["render"]["camera"].contains("fov"));
+    for (const char* key : {"shadows", "ambient_occlusion", "floor", "tank", "cull_buried"})
+        CHECK_FALSE(resolved["render"].contains(key));
     CHECK_NOTHROW(sph::parse_scene(resolved.dump(), "test.json", {}));
+    // ... and a 3D scene's keep them.
+    json deep = json::parse(scene_3d);
+    deep["render"]["shadows"] = true;
+    deep["render"]["floor"] = false;
+    const json resolved_3d = sph::to_json(sph::parse_scene(deep.dump(), "test.json", {}));
+    CHECK(resolved_3d["render"].at("shadows") == true);
+    CHECK(resolved_3d["render"].at("floor") == false);
+    CHECK(resolved_3d["render"].at("tank") == true);
+}
+
+TEST_CASE("a 3D-only render key on a 2D scene stops the run with exit 2, naming it",
+          "[cli][scene]") {
+    sph::test::TempFolder tmp;
+    sph::test::write_text(tmp / "flat.json", scene_2d);
+    for (const char* set : {"render.shadows=true", "render.ambient_occlusion=true",
+                            "render.floor=false", "render.tank=true"}) {
+        INFO(set);
+        const auto result = sph::test::run_sphclip(tmp, {"run", (tmp / "flat.json").string(),
+                                                         "--out", (tmp / "out").string(),
+                                                         "--no-mp4", "--quiet", "--set", set});
+        CHECK(result.exit_code == 2);
+        const std::string key(set, std::string(set).find('='));
+        CHECK(contains(result.output, key));
+        CHECK(contains(result.output, "3D key"));
+        CHECK_FALSE(std::filesystem::exists(tmp / "out" / "frames"));
+    }
 }
 
 TEST_CASE("the camera run.json records, pasted back, draws the same frame", "[cli][render]") {

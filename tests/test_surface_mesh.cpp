@@ -11,6 +11,7 @@
 #include "io/surface_export.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+#include "render/surface/frame_surface.hpp"
 #include "render/surface/reconstruct.hpp"
 #include "support/golden_frames.hpp"
 #include "support/run_sphclip.hpp"
@@ -283,4 +284,89 @@ TEST_CASE("the surface export writes a .ply per frame (and a .vdb in 3D)", "[sur
     CHECK(!fs::exists(out / "particles"));
     for (const auto& entry : fs::directory_iterator(out / "surface"))
         CHECK(entry.path().extension() != ".partial");
+}
+
+TEST_CASE("with the surface style and the export, each frame's surface is reconstructed once",
+          "[surface][render]") {
+    std::vector<int> dims{2};
+    if (surface_3d_available())
+        dims.push_back(3);
+    for (int dim : dims) {
+        INFO(dim << "D");
+        test::TempFolder tmp;
+        const Scene scene = tiny_surface_scene(dim);
+        const RenderSettings settings = make_render_settings(scene);
+        Snapshot frame =
+            dim == 2 ? test::initial_snapshot<2>(scene) : test::initial_snapshot<3>(scene);
+        auto context = make_gl_context("osmesa");
+        // As a run with both wires them: the export first, then the picture.
+        const auto shared =
+            std::make_shared<FrameSurface>(settings.field, settings.spacing, settings.surface);
+        SurfaceExport exported(tmp.path(), settings, shared);
+        FrameRenderer renderer(settings, shared);
+        exported.write(frame);
+        const Image picture = renderer.render(frame);
+        CHECK(shared->reconstructions() == 1);
+        // The next frame is a new surface, again made once.
+        frame.frame = 1;
+        frame.steps = 3;
+        exported.write(frame);
+        const Image next = renderer.render(frame);
+        CHECK(shared->reconstructions() == 2);
+        // The same bytes as each made alone: the picture of a renderer with a
+        // surface of its own, the mesh of a reconstruction of its own.
+        FrameRenderer alone(settings);
+        CHECK(alone.render(frame).rgba == next.rgba);
+        CHECK(picture.rgba.size() == next.rgba.size());
+        const Surface own =
+            reconstruct_surface(frame, settings.field, settings.spacing, settings.surface);
+        CHECK(test::read_text(tmp / "surface" / "frame_00001.ply") ==
+              ply_bytes(own.mesh, "speed", settings.colour_map, settings.range));
+    }
+}
+
+TEST_CASE("with shadows on, the surface casts its shadow on the floor as the spheres do",
+          "[surface][render]") {
+    if (!surface_3d_available())
+        return;
+    const Scene scene = tiny_surface_scene(3);
+    const Snapshot frame = test::initial_snapshot<3>(scene);
+    Snapshot empty = frame;
+    empty.position.clear();
+    empty.velocity.clear();
+    empty.density.clear();
+    empty.pressure.clear();
+    empty.id.clear();
+    empty.buried.clear();
+    auto context = make_gl_context("osmesa");
+    RenderSettings lit = make_render_settings(scene);
+    lit.shadows = true;
+    RenderSettings unlit = lit;
+    unlit.shadows = false;
+    // Pixels the shadows darken by more than a few levels, and those they
+    // brighten at all beyond rounding.
+    auto darkened = [&](const Snapshot& f) {
+        FrameRenderer with(lit), without(unlit);
+        const Image a = with.render(f), b = without.render(f);
+        REQUIRE(a.rgba.size() == b.rgba.size());
+        std::size_t darker = 0, brighter = 0;
+        for (std::size_t p = 0; p + 3 < a.rgba.size(); p += 4) {
+            int sum = 0;
+            for (int c = 0; c < 3; ++c)
+                sum += int(a.rgba[p + c]) - int(b.rgba[p + c]);
+            darker += sum < -12;
+            brighter += sum > 6;
+        }
+        return std::pair{darker, brighter};
+    };
+    // The floor with nothing above it is the same with shadows or without;
+    // with the surface above it, a patch of it is darker (the mesh drew its
+    // depth into the shadow map), and nothing lighter.
+    const auto [bare_darker, bare_brighter] = darkened(empty);
+    CHECK(bare_darker == 0);
+    CHECK(bare_brighter == 0);
+    const auto [darker, brighter] = darkened(frame);
+    INFO(darker << " darker, " << brighter << " brighter of 320 x 180");
+    CHECK(darker > 200);
+    CHECK(brighter < darker / 20);
 }

@@ -197,21 +197,27 @@ class ClipRun {
     // Each frame goes to stats.csv, then the particle exports, then the
     // pictures. The GL sink is made first: it owns the context.
     void add_sinks(std::unique_ptr<GlContext> gl_context) {
+        // With render.style = surface and --export surface, one surface a
+        // frame for both: the export reconstructs it, the picture reuses it.
+        // (Made whatever the style: it reconstructs nothing until asked.)
+        const RenderSettings render_settings = make_render_settings(scene_);
+        const auto surface = std::make_shared<FrameSurface>(
+            render_settings.field, render_settings.spacing, render_settings.surface);
         std::unique_ptr<RenderSink> render;
         if (gl_context)
             render = std::make_unique<RenderSink>(
-                std::move(gl_context), make_render_settings(scene_),
+                std::move(gl_context), render_settings,
                 options_.png ? folder_ / "frames" : fs::path(),
                 options_.mp4 ? folder_ / "clip.mp4" : fs::path(), scene_.fps,
                 Mp4Options{scene_.render.video_quality,
                            std::string(video_preset_name(scene_.render.video_preset)),
                            encoder_threads},
-                EncodeThread::worker);
+                EncodeThread::worker, surface);
         sinks_.push_back(std::make_unique<StatsCsv>(folder_ / "stats.csv"));
         for (const auto& format : options_.exports) {
             if (format == "surface") {
                 sinks_.push_back(
-                    std::make_unique<SurfaceExport>(folder_, make_render_settings(scene_)));
+                    std::make_unique<SurfaceExport>(folder_, render_settings, surface));
                 continue;
             }
             fs::create_directories(folder_ / "particles");
@@ -567,9 +573,9 @@ class ClipRun {
         const int dim = render.dimension();
         json out = {{"fit", render.camera_fit()},
                     {"first_frame", poses.front().frame},
-                    {"first", camera_block(poses.front().pose, dim)},
+                    {"first", camera_block(poses.front().pose, dim, render.scene_aspect())},
                     {"last_frame", poses.back().frame},
-                    {"last", camera_block(poses.back().pose, dim)}};
+                    {"last", camera_block(poses.back().pose, dim, render.scene_aspect())}};
         std::string csv = dim == 2 ? "frame,time_s,centre_x_m,centre_y_m,height_m\n"
                                    : "frame,time_s,position_x_m,position_y_m,position_z_m,"
                                      "target_x_m,target_y_m,target_z_m,up_x,up_y,up_z,fov_deg\n";
@@ -592,7 +598,8 @@ class ClipRun {
         return out;
     }
 
-    static json camera_block(const CameraPose& pose, int dimension) {
+    // 3D with the scene rectangle's aspect: the layout too is the frame's.
+    static json camera_block(const CameraPose& pose, int dimension, double aspect) {
         auto vector = [](const glm::dvec3& v, int n) {
             return std::vector<double>(&v[0], &v[0] + n);
         };
@@ -601,7 +608,8 @@ class ClipRun {
         return {{"position", vector(pose.position, 3)},
                 {"target", vector(pose.target, 3)},
                 {"up", vector(pose.up, 3)},
-                {"fov", pose.fov}};
+                {"fov", pose.fov},
+                {"aspect", aspect}};
     }
 
     // run.json "timings" (per frame and in all) and "stages"; returns the

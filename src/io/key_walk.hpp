@@ -42,6 +42,10 @@ void read_key(FieldReader& r, const std::string& prefix, const Key<S>& key, cons
     auto choice_doc = [&] {
         return fmt::format("{} One of: {}.", key.doc, fmt::join(key.choices, ", "));
     };
+    if (key.only_dimension != 0 && key.only_dimension != dimension && r.present(path))
+        r.fail(path, key.refused.empty() ? fmt::format("is a {}D key; this scene is {}D",
+                                                       key.only_dimension, dimension)
+                                         : key.refused);
     const json* v = r.find(path);
     std::visit(
         [&](auto field) {
@@ -127,7 +131,8 @@ S read_keys(FieldReader& r, const std::string& prefix, const KeyTable<S>& table,
 template <class S>
 void write_keys(json& node, const KeyTable<S>& table, const S& value, int dimension) {
     for (const Key<S>& key : table) {
-        if (key.applies && !key.applies(value))
+        if ((key.applies && !key.applies(value)) ||
+            (key.only_dimension != 0 && key.only_dimension != dimension))
             continue;
         json& out = key.path.empty() ? node : node[key.path];
         const int n = vector_size(key.size, dimension);

@@ -142,6 +142,8 @@ struct Scene {
             double fov = 40;              // degrees, vertical (3D)
             std::optional<Vec3> centre;   // m (2D): the view's centre; default from `fit`
             std::optional<double> height; // m (2D): the height of plane in view
+            // 3D: the scene rectangle's width / height; default from the camera
+            std::optional<double> aspect;
             // A camera path: keyframes in time (render/camera.hpp interpolates).
             struct Keyframe {
                 double time = 0;                      // s

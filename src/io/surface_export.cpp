@@ -68,14 +68,17 @@ std::string ply_bytes(const SurfaceMesh& mesh, const std::string& name, ColourMa
     return out;
 }
 
-SurfaceExport::SurfaceExport(std::filesystem::path folder, const RenderSettings& settings)
-    : folder_(std::move(folder)), settings_(settings) {
+SurfaceExport::SurfaceExport(std::filesystem::path folder, const RenderSettings& settings,
+                             std::shared_ptr<FrameSurface> surface)
+    : folder_(std::move(folder)), settings_(settings),
+      surface_(surface ? std::move(surface)
+                       : std::make_shared<FrameSurface>(settings.field, settings.spacing,
+                                                        settings.surface)) {
     std::filesystem::create_directories(folder_ / "surface");
 }
 
 void SurfaceExport::write(const Snapshot& frame) {
-    const Surface surface =
-        reconstruct_surface(frame, settings_.field, settings_.spacing, settings_.surface);
+    const Surface& surface = surface_->of(frame);
     const std::filesystem::path stem = folder_ / "surface" / frame_stem(frame.frame);
     if (surface.level_set)
         write_level_set(*surface.level_set, std::filesystem::path(stem) += ".vdb");

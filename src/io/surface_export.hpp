@@ -16,9 +16,11 @@
 
 #include "io/frame_sink.hpp"
 #include "render/render_settings.hpp"
+#include "render/surface/frame_surface.hpp"
 #include "render/surface/surface_mesh.hpp"
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
 namespace sph {
@@ -26,8 +28,11 @@ namespace sph {
 class SurfaceExport final : public FrameSink {
   public:
     // Frames go to folder/surface/; the field, colour map, range, spacing
-    // and surface keys from the render settings.
-    SurfaceExport(std::filesystem::path folder, const RenderSettings& settings);
+    // and surface keys from the render settings. `surface`: the frame's
+    // surface, shared with the renderer (render.style = surface) so that it
+    // is reconstructed once; made from `settings`, it is the same surface.
+    SurfaceExport(std::filesystem::path folder, const RenderSettings& settings,
+                  std::shared_ptr<FrameSurface> surface = nullptr);
     void write(const Snapshot& frame) override;
     FrameFields fields() const override {
         return {.pressure = settings_.field == ColourField::pressure};
@@ -36,6 +41,7 @@ class SurfaceExport final : public FrameSink {
   private:
     std::filesystem::path folder_;
     RenderSettings settings_;
+    std::shared_ptr<FrameSurface> surface_;
 };
 
 // The mesh as a binary little-endian PLY file, the scalar named `scalar_name`,

@@ -35,6 +35,7 @@ FrameLayout layout_frame(int width, int height, const OverlayRoom& room, double 
     l.top = {x, y, w + room.right, room.top};
     l.scene = {x, y + room.top, w, h};
     l.right = {x + w, y + room.top, room.right, h};
+    l.aspect = aspect > 0 ? aspect : w / h;
     return l;
 }
 
@@ -137,6 +138,24 @@ double image_aspect(const glm::dvec3& lo, const glm::dvec3& hi, const CameraPose
     for (const glm::dvec3& c : corners(lo, hi))
         extent = glm::max(extent, glm::abs(tangents(c, pose.target, distance, b)));
     return extent.y > 0 ? extent.x / extent.y : 0;
+}
+
+double width_aspect(const glm::dvec3& lo, const glm::dvec3& hi, const CameraPose& pose,
+                    double room_aspect) {
+    const ViewBasis b = basis(pose.position - pose.target, pose.up);
+    const double distance = glm::length(pose.position - pose.target);
+    const double tv = std::tan(glm::radians(0.5 * pose.fov));
+    glm::dvec2 extent(0);
+    for (const glm::dvec3& c : corners(lo, hi)) {
+        if (!(distance - glm::dot(c - pose.target, b.back) > 1e-9 * distance))
+            return 0;
+        extent = glm::max(extent, glm::abs(tangents(c, pose.target, distance, b)));
+    }
+    const double aspect = extent.x / (fit_margin * tv);
+    // A close-up: cut off at the top and bottom, and wider than the room.
+    if (aspect >= room_aspect && extent.y > tv)
+        return 0;
+    return aspect;
 }
 
 CameraPose fit_region(const glm::dvec3& lo, const glm::dvec3& hi, double aspect,
@@ -318,9 +337,36 @@ FrameLayout layout_for(const RenderSettings& s, const OverlayRoom& room) {
         const double margin = frame_margin(s.height);
         const double room_aspect = std::max(1.0, s.width - room.right - 2 * margin) /
                                    std::max(1.0, s.height - room.top - 2 * margin);
-        const CameraPose pose = fit_box(s.domain_min, s.domain_max, default_view_direction(),
-                                        glm::dvec3(0, 1, 0), 40, room_aspect);
-        aspect = image_aspect(s.domain_min, s.domain_max, pose);
+        if (s.scene_aspect > 0) {
+            aspect = s.scene_aspect;
+        } else if (s.camera_fixed || !s.camera_path.empty()) {
+            // The camera is the user's: the rectangle follows the domain's
+            // image from it, not from the default camera (whose width a
+            // close or distant camera does not share: a dead band).
+            std::vector<CameraPose> poses;
+            if (s.camera_path.empty()) {
+                poses.push_back(fixed_pose(s));
+            } else {
+                constexpr int samples = 64;
+                const double t0 = s.camera_path.front().time, t1 = s.camera_path.back().time;
+                for (int k = 0; k <= samples; ++k)
+                    poses.push_back(
+                        path_pose(s.camera_path, t0 + (t1 - t0) * k / samples, s.dimension));
+            }
+            aspect = 0;
+            for (const CameraPose& pose : poses) {
+                const double a = width_aspect(s.domain_min, s.domain_max, pose, room_aspect);
+                if (a == 0) {
+                    aspect = 0; // the room whole: some frame is a close-up
+                    break;
+                }
+                aspect = std::max(aspect, a);
+            }
+        } else {
+            const CameraPose pose = fit_box(s.domain_min, s.domain_max, default_view_direction(),
+                                            glm::dvec3(0, 1, 0), 40, room_aspect);
+            aspect = image_aspect(s.domain_min, s.domain_max, pose);
+        }
     }
     return layout_frame(s.width, s.height, room, aspect);
 }

@@ -37,6 +37,9 @@ struct FrameLayout {
     double margin = 0;         // px, at least, around the group
     PixelRect scene;           // where the scene is drawn
     PixelRect top, right;      // the overlay's bands
+    // The scene's width / height as asked for (else as it came out): what
+    // render.camera.aspect reproduces.
+    double aspect = 0;
 };
 
 // The margin around the group for an image `height` px tall.
@@ -79,6 +82,14 @@ CameraPose fit_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::dvec3&
 // 3D: the aspect (width / height) of the box's image from `pose`, taken
 // symmetric about the view's axis.
 double image_aspect(const glm::dvec3& lo, const glm::dvec3& hi, const CameraPose& pose);
+
+// 3D: the aspect (width / height) of a frame at the pose's fov that is as
+// wide as the box's image (symmetric about the view's axis, with fit_box's
+// 3% margin): beside it nothing is dead. 0 where the box fills the frame
+// whole: wider than `room_aspect` and taller than the view, or round the
+// eye (a corner behind it).
+double width_aspect(const glm::dvec3& lo, const glm::dvec3& hi, const CameraPose& pose,
+                    double room_aspect);
 
 // 2D: the region of the plane that shows the box [lo, hi] whole in a frame
 // of `aspect`, kept inside the domain where it is smaller than the domain
@@ -127,9 +138,13 @@ class CameraRig {
     FollowedBounds followed_;
 };
 
-// The layout for the settings: 2D the domain's aspect; 3D with
-// frame_to_domain the domain's image from the default camera (fov 40, so
-// that the layout does not move with a camera's fov); else the room.
+// The layout for the settings, one for the clip: 2D the domain's aspect;
+// 3D with frame_to_domain: a given scene_aspect; for a fixed camera or a
+// path, width_aspect of the domain from it (a path's widest, sampled over
+// the clip), so a close or distant camera leaves no dead band beside the
+// tank; for fitted cameras and orbits, which fit themselves into the
+// rectangle, the domain's image from the default camera (fov 40, so that
+// the layout does not move with a camera's fov); else the room.
 FrameLayout layout_for(const RenderSettings& settings, const OverlayRoom& room);
 
 // One frame's transforms. Positions are relative to `origin`, the domain's

@@ -8,7 +8,7 @@
 #include "render/particle_batch.hpp"
 #include "render/scenery.hpp"
 #include "render/sphere_pass.hpp"
-#include "render/surface/reconstruct.hpp"
+#include "render/surface/frame_surface.hpp"
 #include "render/surface/surface_pass.hpp"
 #include "sph/wall_clock.hpp"
 
@@ -27,7 +27,9 @@ struct FrameRenderer::Parts {
     ParticleBatch batch;
     SpherePass spheres;
     FlatPainter painter;
-    // render.style = surface: the mesh pass, made only for that style.
+    // render.style = surface: the frame's surface and the mesh pass, made
+    // only for that style.
+    std::shared_ptr<FrameSurface> surfaces;
     std::unique_ptr<SurfacePass> surface;
     Scenery scenery;
     Overlay overlay;
@@ -39,18 +41,21 @@ struct FrameRenderer::Parts {
     // The key light, its shadows and the ambient occlusion.
     LightRig light;
 
-    explicit Parts(const RenderSettings& s)
+    Parts(const RenderSettings& s, std::shared_ptr<FrameSurface> shared)
         : target(s.width, s.height, s.samples),
           colour_map(gl::make_colour_map_texture(s.colour_map)), outline_rule(s),
           batch(s, outline_groups), spheres(s),
+          surfaces(s.style != FluidStyle::surface ? nullptr
+                   : shared                       ? std::move(shared)
+                             : std::make_shared<FrameSurface>(s.field, s.spacing, s.surface)),
           surface(s.style == FluidStyle::surface ? std::make_unique<SurfacePass>(s) : nullptr),
           scenery(s), overlay(s), layout(layout_for(s, overlay.room())),
           rig(s, layout.scene.width / std::max(1.0, layout.scene.height)),
           light(s, scenery.reach()) {}
 };
 
-FrameRenderer::FrameRenderer(const RenderSettings& settings)
-    : settings_(settings), parts_(std::make_unique<Parts>(settings_)) {
+FrameRenderer::FrameRenderer(const RenderSettings& settings, std::shared_ptr<FrameSurface> surface)
+    : settings_(settings), parts_(std::make_unique<Parts>(settings_, std::move(surface))) {
     gl::check_gl("renderer set-up");
 }
 
@@ -62,6 +67,10 @@ const std::string& FrameRenderer::font_warning() const {
 
 const CameraPose& FrameRenderer::last_pose() const {
     return parts_->pose;
+}
+
+double FrameRenderer::scene_aspect() const {
+    return parts_->layout.aspect;
 }
 
 std::size_t FrameRenderer::last_drawn() const {
@@ -88,23 +97,26 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // batch's counts of particles outside the colour range still warn).
     p.batch.fill(frame, camera, p.outline_rule);
     timings_.fill_seconds = seconds_since(start);
-    // The surface from the particles, on the CPU.
-    Surface surface;
+    // The surface from the particles, on the CPU (once a frame, whoever
+    // asks first).
+    const Surface* surface = nullptr;
     if (p.surface) {
         const auto surface_start = Clock::now();
-        surface = reconstruct_surface(frame, settings_.field, settings_.spacing, settings_.surface);
+        surface = &p.surfaces->of(frame);
         timings_.surface_seconds = seconds_since(surface_start);
-        timings_.surface_vertices = surface.mesh.vertices();
+        timings_.surface_vertices = surface->mesh.vertices();
     }
 
-    // The key light, and the depth of what casts its shadows (the surface
-    // mesh casts none yet: docs/rendering.md).
+    // The key light, and the depth of what casts its shadows: the fluid
+    // (its spheres or its surface) and the solids.
     if (p.surface)
-        p.surface->upload(surface.mesh, camera);
+        p.surface->upload(surface->mesh, camera);
     else
         p.spheres.upload(p.batch);
     const Lighting lighting = p.light.light(camera, {[&](const Camera& light) {
-                                                         if (!p.surface)
+                                                         if (p.surface)
+                                                             p.surface->draw_depth(light);
+                                                         else
                                                              p.spheres.draw_depth(p.batch, light);
                                                      },
                                                      [&](const Camera& light) {

@@ -18,12 +18,15 @@
 
 namespace sph {
 
+class FrameSurface;
+
 struct FrameTimings {
     double fill_seconds = 0;     // culling and filling the instances (part of draw_seconds)
     double draw_seconds = 0;     // submitting and finishing the draw
     double readback_seconds = 0; // resolving and reading the pixels
     // render.style = surface: reconstructing the surface and colouring its
-    // vertices on the CPU (part of draw_seconds), and its vertex count.
+    // vertices on the CPU (part of draw_seconds; none where the export
+    // reconstructed this frame's surface first), and its vertex count.
     double surface_seconds = 0;
     std::size_t surface_vertices = 0;
 };
@@ -31,7 +34,11 @@ struct FrameTimings {
 class FrameRenderer {
   public:
     // Needs a current GL 4.5 context; throws std::runtime_error on GL errors.
-    explicit FrameRenderer(const RenderSettings& settings);
+    // render.style = surface: the frame's surface from `surface`, shared with
+    // the surface export (made with the settings' field, spacing and surface
+    // keys), else from a FrameSurface of its own.
+    explicit FrameRenderer(const RenderSettings& settings,
+                           std::shared_ptr<FrameSurface> surface = nullptr);
     ~FrameRenderer();
     FrameRenderer(const FrameRenderer&) = delete;
     FrameRenderer& operator=(const FrameRenderer&) = delete;
@@ -48,6 +55,8 @@ class FrameRenderer {
     const RenderSettings& settings() const { return settings_; }
     // The camera of the last frame (render/camera.hpp).
     const CameraPose& last_pose() const;
+    // The scene rectangle's width / height, the same every frame.
+    double scene_aspect() const;
     // Why the overlay's text is not in the font asked for (empty: it is).
     const std::string& font_warning() const;
 

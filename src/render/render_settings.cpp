@@ -129,6 +129,7 @@ RenderSettings make_render_settings(const Scene& scene) {
     r.fps = scene.fps;
     r.duration = scene.duration;
     r.frame_to_domain = scene.dimension == 3;
+    r.scene_aspect = scene.dimension == 3 ? camera.aspect.value_or(0) : 0;
     r.camera_target = 0.5 * (r.domain_min + r.domain_max);
     if (camera.up)
         r.camera_up = vec(*camera.up);

@@ -72,6 +72,9 @@ struct RenderSettings {
     // camera sees it, so the colour bar sits beside the tank; false: the
     // room the overlay leaves. make_render_settings sets it for 3D scenes.
     bool frame_to_domain = false;
+    // 3D: the scene rectangle's aspect as given (render.camera.aspect); 0:
+    // from the camera (layout_for).
+    double scene_aspect = 0;
     int samples = 4; // multisampling
     // Skip particles the snapshot marks as buried deep in the fluid (3D).
     bool cull_buried = false;

@@ -20,8 +20,10 @@ constexpr double outside_range_share = 0.05;
 
 RenderSink::RenderSink(std::unique_ptr<GlContext> context, const RenderSettings& settings,
                        std::filesystem::path png_folder, std::filesystem::path mp4_path, double fps,
-                       const Mp4Options& mp4_options, EncodeThread encode)
-    : context_(std::move(context)), renderer_(settings), png_folder_(std::move(png_folder)) {
+                       const Mp4Options& mp4_options, EncodeThread encode,
+                       std::shared_ptr<FrameSurface> surface)
+    : context_(std::move(context)), renderer_(settings, std::move(surface)),
+      png_folder_(std::move(png_folder)) {
     if (!renderer_.font_warning().empty())
         warnings_.push_back(renderer_.font_warning());
     if (!png_folder_.empty()) {

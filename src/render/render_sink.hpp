@@ -31,9 +31,11 @@ class RenderSink final : public FrameSink {
   public:
     // `png_folder` empty: no PNGs; `mp4_path` empty: no video. `encode`:
     // same_thread is the sequential path (the same bytes, no overlap).
+    // `surface`: render.style = surface's, shared with the surface export.
     RenderSink(std::unique_ptr<GlContext> context, const RenderSettings& settings,
                std::filesystem::path png_folder, std::filesystem::path mp4_path, double fps,
-               const Mp4Options& mp4_options, EncodeThread encode = EncodeThread::worker);
+               const Mp4Options& mp4_options, EncodeThread encode = EncodeThread::worker,
+               std::shared_ptr<FrameSurface> surface = nullptr);
     void write(const Snapshot& frame) override;
     // Waits for the PNGs and finalises the video, also after an early stop.
     void finish() override;
@@ -59,6 +61,7 @@ class RenderSink final : public FrameSink {
     };
     const std::vector<FramePose>& poses() const { return poses_; }
     int dimension() const { return renderer_.settings().dimension; }
+    double scene_aspect() const { return renderer_.scene_aspect(); }
     const std::string& camera_fit() const { return choice_name(renderer_.settings().camera_fit); }
 
   private:

@@ -58,6 +58,10 @@ struct Key {
     // not apply, it is refused with `refused`, and it is not written there.
     bool (*applies)(const S&) = nullptr;
     std::string refused{};
+    // A key of one dimension's scenes only (2 or 3; 0: both): a scene of the
+    // other refuses it (with `refused`, else a problem naming the
+    // dimension), rather than ignore it, and run.json's scene leaves it out.
+    int only_dimension = 0;
 };
 
 template <class S>

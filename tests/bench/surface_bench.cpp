@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
     const std::vector<std::string> backends = bench::split_list(options.backends);
     for (std::size_t n : counts) {
         const double box = 0.1, spacing = box / std::ceil(std::cbrt(double(n)));
-        const Snapshot frame = make_fluid(n, spacing);
+        Snapshot frame = make_fluid(n, spacing);
         for (const std::string& backend : backends) {
             auto context = make_gl_context(backend);
             for (const auto& [width, height] : sizes) {
@@ -155,6 +155,9 @@ int main(int argc, char** argv) {
                 std::size_t vertices = 0, triangles = 0;
                 Image image;
                 for (int k = 0; k < repeats; ++k) {
+                    // A new frame each time: the renderer reconstructs a
+                    // frame's surface once (FrameSurface), and would reuse it.
+                    frame.frame = std::uint64_t(k);
                     // The split, from the reconstruction alone...
                     const Surface s = reconstruct_surface(frame, r.field, spacing, r.surface);
                     reconstruct.push_back(1e3 * s.reconstruction_seconds);

@@ -9,6 +9,9 @@ namespace sph {
 
 const KeyTable<Scene::Render>& render_keys() {
     using S = Scene::Render;
+    const std::string flat_refused =
+        "is a 3D key: a 2D scene is drawn flat, with no light, floor, tank or hidden "
+        "particles; leave it out";
     static const KeyTable<S> keys{
         {.path = "size",
          .field = &S::size,
@@ -48,8 +51,11 @@ const KeyTable<Scene::Render>& render_keys() {
          .choices = choice_names<FluidStyle>()},
         {.path = "cull_buried",
          .field = &S::cull_buried,
-         .doc = "3D: skip particles buried under two full layers of fluid (a camera outside the "
-                "fluid cannot see them); false draws every particle."},
+         .doc = "3D only (a 2D scene refuses it): skip particles buried under two full layers "
+                "of fluid (a camera outside the fluid cannot see them); false draws every "
+                "particle.",
+         .refused = flat_refused,
+         .only_dimension = 3},
         {.path = "video_quality",
          .field = &S::video_quality,
          .doc = "MP4 constant quality (x264 CRF): 0 lossless, 18-23 visually good, 51 worst.",
@@ -75,24 +81,32 @@ const KeyTable<Scene::Render>& render_keys() {
          .absent = "DejaVu Sans (fonts-dejavu-core), else fc-match's, else a bitmap font"},
         {.path = "shadows",
          .field = &S::shadows,
-         .doc = "3D: the key light casts soft shadows (a shadow map filtered over about a "
-                "particle's radius) on the fluid, the floor and the solids; 2D scenes have "
-                "none. Off by default: it costs about as much as the spheres "
-                "themselves on llvmpipe (docs/rendering.md)."},
+         .doc = "3D only (a 2D scene refuses it): the key light casts soft shadows (a shadow "
+                "map filtered over about a particle's radius) on the fluid, the floor and the "
+                "solids. Off by default: it costs about as much as the spheres themselves on "
+                "llvmpipe (docs/rendering.md).",
+         .refused = flat_refused,
+         .only_dimension = 3},
         {.path = "ambient_occlusion",
          .field = &S::ambient_occlusion,
-         .doc = "3D: screen-space ambient occlusion darkens creases, contact with the floor and "
-                "walls, and the hollows of a splash, over about four particle radii; 2D scenes "
-                "have none. Off by default: two passes over the image, as costly as the "
-                "spheres on llvmpipe (docs/rendering.md)."},
+         .doc = "3D only (a 2D scene refuses it): screen-space ambient occlusion darkens "
+                "creases, contact with the floor and walls, and the hollows of a splash, over "
+                "about four particle radii. Off by default: two passes over the image, as "
+                "costly as the spheres on llvmpipe (docs/rendering.md).",
+         .refused = flat_refused,
+         .only_dimension = 3},
         {.path = "floor",
          .field = &S::floor,
-         .doc = "3D: a matte floor under the domain (against gravity; y without it) that "
-                "receives the shadows and fades into the backdrop."},
+         .doc = "3D only (a 2D scene refuses it): a matte floor under the domain (against "
+                "gravity; y without it) that receives the shadows and fades into the backdrop.",
+         .refused = flat_refused,
+         .only_dimension = 3},
         {.path = "tank",
          .field = &S::tank,
-         .doc = "3D: the domain's walls drawn as faint glass (more opaque at grazing angles) "
-                "besides its edges; false: the edges only."},
+         .doc = "3D only (a 2D scene refuses it): the domain's walls drawn as faint glass (more "
+                "opaque at grazing angles) besides its edges; false: the edges only.",
+         .refused = flat_refused,
+         .only_dimension = 3},
         {.path = "background",
          .field = enum_field<&S::background>(),
          .doc = "The backdrop and overlay palette: light (a pale grey gradient, where every "
@@ -135,6 +149,10 @@ const KeyTable<Scene::Render::Surface>& surface_keys() {
 
 const KeyTable<Scene::Render::Camera>& camera_keys() {
     using S = Scene::Render::Camera;
+    const std::string three_d = "is a 3D camera key: a 2D scene is seen straight on; "
+                                "render.camera.centre and render.camera.height set its view";
+    const std::string two_d = "is a 2D camera key: a 3D scene's camera is set by "
+                              "render.camera.position, target, up and fov";
     static const KeyTable<S> keys{
         {.path = "fit",
          .field = enum_field<&S::fit>(),
@@ -149,37 +167,60 @@ const KeyTable<Scene::Render::Camera>& camera_keys() {
          .unit = "m",
          .doc = "Camera position (3D scenes only).",
          .absent = "from fit: front right, 20 degrees above",
-         .size = VectorSize::three},
+         .size = VectorSize::three,
+         .refused = three_d,
+         .only_dimension = 3},
         {.path = "target",
          .field = &S::target,
          .unit = "m",
          .doc = "Point the camera looks at (3D scenes only).",
          .absent = "from fit: the framed box's centre",
-         .size = VectorSize::three},
+         .size = VectorSize::three,
+         .refused = three_d,
+         .only_dimension = 3},
         {.path = "up",
          .field = &S::up,
          .doc = "The direction that is up in the image (3D scenes only); must not be along the "
                 "view.",
          .absent = "[0, 1, 0]",
-         .size = VectorSize::three},
+         .size = VectorSize::three,
+         .refused = three_d,
+         .only_dimension = 3},
         {.path = "fov",
          .field = &S::fov,
          .unit = "degrees",
          .doc = "Vertical field of view (3D scenes only), below 180.",
-         .bound = Bound::positive},
+         .bound = Bound::positive,
+         .refused = three_d,
+         .only_dimension = 3},
         {.path = "centre",
          .field = &S::centre,
          .unit = "m",
          .doc = "The centre of the plane's region in view (2D scenes only).",
          .absent = "from fit",
-         .size = VectorSize::two},
+         .size = VectorSize::two,
+         .refused = two_d,
+         .only_dimension = 2},
         {.path = "height",
          .field = &S::height,
          .unit = "m",
          .doc = "The height of the plane's region in view (2D scenes only); its width follows "
                 "from the frame's aspect.",
          .bound = Bound::positive,
-         .absent = "from fit"},
+         .absent = "from fit",
+         .refused = two_d,
+         .only_dimension = 2},
+        {.path = "aspect",
+         .field = &S::aspect,
+         .doc = "The width / height of the scene's rectangle, beside the overlay's bands (3D "
+                "scenes only); by default as wide as the domain's image from a fixed camera "
+                "or path (the widest over the clip), the room whole where the domain fills the "
+                "view, else the domain's image from the default camera. run.json records it "
+                "with each camera, so a pasted camera draws its frame again.",
+         .bound = Bound::positive,
+         .absent = "from the camera",
+         .refused = three_d,
+         .only_dimension = 3},
     };
     return keys;
 }
@@ -295,19 +336,13 @@ const KeyTable<Scene::Render::Camera::Orbit>& orbit_keys() {
 
 namespace {
 
-// Where a key given only for the other dimension is refused.
+// The orbit, an object rather than a key of camera_keys() (whose keys of
+// one dimension refuse themselves, Key::only_dimension), is 3D only.
 void refuse_for_dimension(const FieldReader& r, int dimension) {
-    const bool flat = dimension == 2;
-    const std::vector<std::string> other =
-        flat ? std::vector<std::string>{"position", "target", "up", "fov", "orbit"}
-             : std::vector<std::string>{"centre", "height"};
-    for (const std::string& key : other)
-        if (r.present("render.camera." + key))
-            r.fail("render.camera." + key,
-                   flat ? "is a 3D camera key: a 2D scene is seen straight on; "
-                          "render.camera.centre and render.camera.height set its view"
-                        : "is a 2D camera key: a 3D scene's camera is set by "
-                          "render.camera.position, target, up and fov");
+    if (dimension == 2 && r.present("render.camera.orbit"))
+        r.fail("render.camera.orbit",
+               "is a 3D camera key: a 2D scene is seen straight on; render.camera.centre and "
+               "render.camera.height set its view");
 }
 
 } // namespace
@@ -376,12 +411,9 @@ void read_camera(FieldReader& r, Scene& s) {
 }
 
 json write_camera(const Scene::Render::Camera& c, int dimension) {
+    // Only the keys of the scene's dimension (Key::only_dimension): run.json's
+    // scene reads back.
     json out = write_keys(camera_keys(), c, dimension);
-    // Only the keys of the scene's dimension: run.json's scene reads back.
-    for (const char* key : dimension == 2
-                               ? std::vector<const char*>{"position", "target", "up", "fov"}
-                               : std::vector<const char*>{"centre", "height"})
-        out.erase(key);
     if (!c.path.empty())
         out["path"] = write_list(camera_path_keys(), c.path, dimension);
     if (c.orbit)

@@ -77,6 +77,14 @@ std::shared_ptr<const LevelSet> make_level_set(const Snapshot& frame, double spa
         raster.rasterizeSpheres(ParticleList(frame), radius);
         raster.finalize(/*prune=*/true);
         openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*grid);
+        // After each of a Gaussian pass's four box filters the tracker
+        // renormalises the band (three sweeps); first-order upwind gradients
+        // in place of the default fifth-order WENO make the whole
+        // reconstruction 2.5-2.8x faster at 100k particles with the same
+        // surface to the eye (sphclip_bench_surface, docs/rendering.md).
+        // Fewer sweeps are faster still but leave the band short of a signed
+        // distance, and the mesh at -erosion shrinks (8% fewer vertices).
+        filter.setSpatialScheme(openvdb::math::FIRST_BIAS);
         for (int pass = 0; pass < settings.smoothing; ++pass)
             filter.gaussian(1);
         // The union's values inside are each sphere's own distance, not the

@@ -102,15 +102,31 @@ void SurfacePass::upload(const SurfaceMesh& mesh, const Camera& camera) {
                         GLsizeiptr(scratch_i_.size() * sizeof(std::uint32_t)), scratch_i_.data());
 }
 
-void SurfacePass::draw(const Camera& camera) const {
-    if (fill_indices_ == 0)
-        return;
+void SurfacePass::set_camera(const Camera& camera) const {
     const GLuint p = program_.id();
     glUseProgram(p);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_view"), 1, GL_FALSE, glm::value_ptr(camera.view));
     glUniformMatrix4fv(glGetUniformLocation(p, "u_projection"), 1, GL_FALSE,
                        glm::value_ptr(camera.projection));
     glUniform1i(glGetUniformLocation(p, "u_orthographic"), camera.orthographic);
+}
+
+void SurfacePass::draw_depth(const Camera& light) const {
+    if (fill_indices_ == 0 || flat_)
+        return;
+    // The shading program, its colour output unused: the shadow map's
+    // framebuffer has depth only, and the surface's shader samples no map.
+    set_camera(light);
+    glBindVertexArray(vao_.id());
+    glDrawElements(GL_TRIANGLES, GLsizei(fill_indices_), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+}
+
+void SurfacePass::draw(const Camera& camera) const {
+    if (fill_indices_ == 0)
+        return;
+    set_camera(camera);
+    const GLuint p = program_.id();
     glUniform1i(glGetUniformLocation(p, "u_flat"), flat_);
     glUniform1i(glGetUniformLocation(p, "u_colour_map"), 0);
     glUniform2f(glGetUniformLocation(p, "u_range"), range_[0], range_[1]);

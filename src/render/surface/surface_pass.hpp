@@ -23,8 +23,14 @@ class SurfacePass {
     // in 2D, the outline's quads, whose width depends on the camera's scale.
     void upload(const SurfaceMesh& mesh, const Camera& camera);
     void draw(const Camera& camera) const;
+    // 3D: the mesh's depth through the key light's camera, for the shadow
+    // map (ShadowMap::DrawDepth), so the surface casts its shadow on the
+    // floor and the solids as the spheres do.
+    void draw_depth(const Camera& light) const;
 
   private:
+    void set_camera(const Camera& camera) const;
+
     std::array<float, 2> range_;
     gl::Program program_;
     gl::VertexArray vao_;

@@ -47,7 +47,7 @@ struct FrameRenderer::Parts {
           batch(s, outline_groups), spheres(s),
           surfaces(s.style != FluidStyle::surface ? nullptr
                    : shared                       ? std::move(shared)
-                             : std::make_shared<FrameSurface>(s.field, s.spacing, s.surface)),
+                            : std::make_shared<FrameSurface>(s.field, s.spacing, s.surface)),
           surface(s.style == FluidStyle::surface ? std::make_unique<SurfacePass>(s) : nullptr),
           scenery(s), overlay(s), layout(layout_for(s, overlay.room())),
           rig(s, layout.scene.width / std::max(1.0, layout.scene.height)),

@@ -2,8 +2,8 @@
 
 namespace sph {
 
-FrameSurface::FrameSurface(std::string field, double spacing, const SurfaceSettings& settings)
-    : field_(std::move(field)), spacing_(spacing), settings_(settings) {}
+FrameSurface::FrameSurface(ColourField field, double spacing, const SurfaceSettings& settings)
+    : field_(field), spacing_(spacing), settings_(settings) {}
 
 const Surface& FrameSurface::of(const Snapshot& frame) {
     const Key key{frame.frame, frame.steps};

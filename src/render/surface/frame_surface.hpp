@@ -16,7 +16,7 @@ class FrameSurface {
   public:
     // The colour field, the particle spacing (m) and the render.surface keys
     // every consumer shares.
-    FrameSurface(std::string field, double spacing, const SurfaceSettings& settings);
+    FrameSurface(ColourField field, double spacing, const SurfaceSettings& settings);
 
     // The surface of `frame`: reconstructed at the first call for that frame
     // (its number and step count), the same surface at the next calls.
@@ -26,7 +26,7 @@ class FrameSurface {
     std::size_t reconstructions() const { return reconstructions_; }
 
   private:
-    std::string field_;
+    ColourField field_;
     double spacing_;
     SurfaceSettings settings_;
     struct Key {

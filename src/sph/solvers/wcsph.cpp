@@ -54,8 +54,7 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
     const MorrisViscosity morris = laminar ? laminar->pair_viscosity(params) : MorrisViscosity{};
     const PairViscosities viscosities{artificial ? &monaghan : nullptr,
                                       laminar ? &morris : nullptr};
-    SinglePasses<D>* single =
-        params.precision == Precision::single ? &single_passes() : nullptr;
+    SinglePasses<D>* single = params.precision == Precision::single ? &single_passes() : nullptr;
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
         density_and_pressure(params, kernel, context, single, state);
@@ -81,8 +80,7 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
 template <int D>
 void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
                                    StepContext<D>& context) {
-    SinglePasses<D>* single =
-        params.precision == Precision::single ? &single_passes() : nullptr;
+    SinglePasses<D>* single = params.precision == Precision::single ? &single_passes() : nullptr;
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         if (context.output_pressure)
             density_and_pressure(params, kernel, context, single, state);

@@ -16,8 +16,8 @@
 #include "sph/single_precision/single_passes.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <string>
 #include <vector>
 

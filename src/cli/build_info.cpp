@@ -63,8 +63,8 @@ nlohmann::json build_json() {
             {"flags", SPHCLIP_BUILD_FLAGS},
             {"arch", SPHCLIP_BUILD_ARCH},
             {"instruction_sets", built_instruction_sets()},
-            {"simd_variants", std::vector<std::string>(simd_variants().begin(),
-                                                       simd_variants().end())}};
+            {"simd_variants",
+             std::vector<std::string>(simd_variants().begin(), simd_variants().end())}};
 }
 
 std::string cpu_model(const std::string& cpuinfo_text) {

@@ -59,7 +59,9 @@ struct FlowCase {
 // The Martin & Moyce column of the water scenes: width a, height 2a.
 constexpr double column = 0.05715; // m
 
-std::string number(double v) { return fmt::format("{:.17g}", v); }
+std::string number(double v) {
+    return fmt::format("{:.17g}", v);
+}
 
 // Spacing giving about n particles in the a x 2a column (x 0.1 m in 3D).
 double spacing_for(int dimension, double n) {
@@ -316,8 +318,8 @@ int run_case(const FlowCase& c, const std::string& scenes, const std::vector<Con
         if (csv)
             fmt::print(csv, "{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.1f},{},\"{}\"\n",
                        c.name, D, start.size(), configs[k].precision, configs[k].threads,
-                       configs[k].reorder, c.steps, samples[k].size(), m, *lo, *hi, 1e9 / m,
-                       same, all);
+                       configs[k].reorder, c.steps, samples[k].size(), m, *lo, *hi, 1e9 / m, same,
+                       all);
     }
     std::fflush(stdout);
     if (csv)
@@ -328,8 +330,8 @@ int run_case(const FlowCase& c, const std::string& scenes, const std::vector<Con
 } // namespace
 
 int main(int argc, char** argv) {
-    std::vector<std::string> names{"dam_2d_5k", "dam_2d_20k", "surge_2d_5k", "dsph_2d_5k",
-                                   "dsph_2d_20k", "dam_3d_100k"};
+    std::vector<std::string> names{"dam_2d_5k",  "dam_2d_20k",  "surge_2d_5k",
+                                   "dsph_2d_5k", "dsph_2d_20k", "dam_3d_100k"};
     std::vector<int> thread_counts{1, 2}, reorders{-1};
     std::vector<std::string> precisions{"single", "double"};
     int steps = 0, rounds = 3, load = 0;

@@ -33,7 +33,9 @@ constexpr std::string_view variants[] = {"native"};
 
 } // namespace
 
-std::span<const std::string_view> simd_variants() { return variants; }
+std::span<const std::string_view> simd_variants() {
+    return variants;
+}
 
 bool simd_variant_runs(std::string_view variant) {
 #ifdef SPHCLIP_SIMD_DISPATCH

@@ -23,6 +23,7 @@
 //                      [--precision single,double] [--reorder N,N] [--steps N]
 //                      [--rounds N] [--load N] [--scenes DIR] [--csv FILE]
 
+#include "bench_support.hpp"
 #include "io/scene_setup.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
@@ -44,6 +45,7 @@
 #include <vector>
 
 using namespace sph;
+using namespace sph::bench;
 
 namespace {
 
@@ -169,37 +171,6 @@ Sample time_steps(const Scene& scene, const State<D>& start, int threads, int st
     return s;
 }
 
-std::vector<std::string> split(const std::string& text) {
-    std::vector<std::string> parts;
-    std::size_t begin = 0;
-    while (begin <= text.size()) {
-        const std::size_t end = std::min(text.find(',', begin), text.size());
-        if (end > begin)
-            parts.push_back(text.substr(begin, end - begin));
-        begin = end + 1;
-    }
-    return parts;
-}
-
-std::string load_average() {
-    double load[3] = {-1, -1, -1};
-    if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
-        if (std::fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3)
-            load[0] = -1;
-        std::fclose(f);
-    }
-    return fmt::format("{:.2f} {:.2f} {:.2f}", load[0], load[1], load[2]);
-}
-
-std::string cpu_model() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line))
-        if (line.rfind("model name", 0) == 0)
-            return line.substr(line.find(':') + 2);
-    return "unknown CPU";
-}
-
 std::string environment(const char* name) {
     const char* v = std::getenv(name);
     return v ? v : "(unset)";
@@ -230,12 +201,6 @@ class CompetingLoad {
   private:
     std::vector<pid_t> children_;
 };
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 int usage() {
     std::string names;
@@ -344,17 +309,17 @@ int main(int argc, char** argv) {
         if (arg == "--tiny")
             small = true;
         else if (arg == "--cases" && has_value)
-            names = split(argv[++k]);
+            names = split_list(argv[++k]);
         else if (arg == "--threads" && has_value) {
             thread_counts.clear();
-            for (const auto& s : split(argv[++k]))
+            for (const auto& s : split_list(argv[++k]))
                 thread_counts.push_back(std::atoi(s.c_str()));
         } else if (arg == "--reorder" && has_value) {
             reorders.clear();
-            for (const auto& s : split(argv[++k]))
+            for (const auto& s : split_list(argv[++k]))
                 reorders.push_back(std::atoi(s.c_str()));
         } else if (arg == "--precision" && has_value)
-            precisions = split(argv[++k]);
+            precisions = split_list(argv[++k]);
         else if (arg == "--steps" && has_value)
             steps = std::atoi(argv[++k]);
         else if (arg == "--rounds" && has_value)

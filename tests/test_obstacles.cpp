@@ -2,9 +2,9 @@
 // the keys and their checks, the sampling of the solid, the rest density
 // beside an obstacle, and dam breaks against obstacles that never let fluid
 // inside.
-#include "io/input_error.hpp"
-#include "io/scene.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_setup.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/palette.hpp"

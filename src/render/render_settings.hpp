@@ -2,7 +2,7 @@
 // What a frame shows and how it is drawn, filled from the scene's render
 // section: a plain struct with defaults and units (STYLE.md point 10).
 
-#include "io/scene.hpp"
+#include "scene/scene.hpp"
 #include "render/surface/surface_mesh.hpp"
 
 #include <array>

@@ -11,7 +11,7 @@
 // filled. The colour field is then carried from the particles to the
 // vertices (vertex_colours.hpp).
 
-#include "io/render_choices.hpp"
+#include "scene/render_choices.hpp"
 #include "render/surface/surface_mesh.hpp"
 #include "sph/snapshot.hpp"
 

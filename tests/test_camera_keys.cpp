@@ -5,9 +5,9 @@
 // to end: the camera run.json records for a clip's last frame, pasted into
 // the scene, draws that frame again, byte for byte.
 
+#include "render/render_settings.hpp"
 #include "scene/input_error.hpp"
 #include "scene/scene.hpp"
-#include "render/render_settings.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/text.hpp"
 

@@ -4,9 +4,9 @@
 // corpora tests/fuzz/corpus/{obj,png}/). Each must load, or be refused with
 // the reader's own error naming the file.
 
+#include "output/png_io.hpp"
 #include "scene/input_error.hpp"
 #include "scene/obj_mesh.hpp"
-#include "output/png_io.hpp"
 #include "scene/scene.hpp"
 #include "support/temp_folder.hpp"
 

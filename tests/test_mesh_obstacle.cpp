@@ -3,12 +3,12 @@
 // against the analytic box, an icosphere against the analytic sphere, the
 // OBJ file's checks and path rule, a dam break that never puts fluid inside,
 // and the renderer.
+#include "render/frame_renderer.hpp"
+#include "render/gl_context.hpp"
 #include "scene/input_error.hpp"
 #include "scene/obj_mesh.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_setup.hpp"
-#include "render/frame_renderer.hpp"
-#include "render/gl_context.hpp"
 #include "sph/boundaries/obstacles.hpp"
 #include "sph/boundaries/triangle_mesh.hpp"
 #include "support/temp_folder.hpp"

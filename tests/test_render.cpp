@@ -5,11 +5,11 @@
 // (then look at them before committing).
 #include "output/image_compare.hpp"
 #include "output/png_io.hpp"
-#include "scene/scene_setup.hpp"
 #include "render/colour_maps.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/sphere_geometry.hpp"
+#include "scene/scene_setup.hpp"
 #include "support/golden_frames.hpp"
 #include "support/temp_folder.hpp"
 

@@ -3,9 +3,9 @@
 // and reports what each frame cost.
 
 #include "output/mp4_writer.hpp"
-#include "scene/scene_setup.hpp"
 #include "render/gl_context.hpp"
 #include "render/render_sink.hpp"
+#include "scene/scene_setup.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>

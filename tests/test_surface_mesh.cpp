@@ -7,12 +7,12 @@
 // tests/exports/check_surface_with_vtk.py.)
 #include "output/image_compare.hpp"
 #include "output/png_io.hpp"
-#include "scene/scene_setup.hpp"
 #include "output/surface_export.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/surface/frame_surface.hpp"
 #include "render/surface/reconstruct.hpp"
+#include "scene/scene_setup.hpp"
 #include "support/golden_frames.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"

@@ -8,12 +8,12 @@
 #include "cli/stop_signals.hpp"
 #include "output/files.hpp"
 #include "output/particle_export.hpp"
-#include "scene/scene_setup.hpp"
 #include "output/stats_csv.hpp"
 #include "output/surface_export.hpp"
 #include "parallel/rank_partition.hpp"
 #include "parallel/world.hpp"
 #include "render/render_sink.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/surface.hpp"
 #include "sph/wall_clock.hpp"
 

@@ -2,8 +2,8 @@
 
 #include "cli/exit_codes.hpp"
 #include "output/files.hpp"
-#include "scene/input_error.hpp"
 #include "output/png_io.hpp"
+#include "scene/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

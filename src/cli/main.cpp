@@ -11,9 +11,9 @@
 #include "cli/study_command.hpp"
 #include "cli/validate_command.hpp"
 #include "cli/wait_policy.hpp"
-#include "scene/input_error.hpp"
 #include "parallel/world.hpp"
 #include "render/gl_context.hpp"
+#include "scene/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <exception>

@@ -1,7 +1,7 @@
 #include "scene/scene.hpp"
 
-#include "scene/field_reader.hpp"
 #include "output/files.hpp"
+#include "scene/field_reader.hpp"
 #include "scene/input_error.hpp"
 #include "scene/key_walk.hpp"
 #include "scene/keys/effect_registry.hpp"

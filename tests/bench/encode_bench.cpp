@@ -11,9 +11,9 @@
 //   build/sphclip_bench_encode --tiny               # one small case (CI)
 #include "bench_support.hpp"
 #include "output/mp4_writer.hpp"
-#include "scene/scene_setup.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+#include "scene/scene_setup.hpp"
 
 #include <algorithm>
 #include <chrono>

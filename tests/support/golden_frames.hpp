@@ -7,10 +7,10 @@
 
 #include "output/image_compare.hpp"
 #include "output/png_io.hpp"
-#include "scene/scene.hpp"
-#include "scene/scene_setup.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_setup.hpp"
 
 #include <catch2/catch.hpp>
 #include <cstdlib>

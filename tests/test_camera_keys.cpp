@@ -1,13 +1,13 @@
-// render.camera's keys (src/io/keys/render_keys.cpp): keys of the other
+// render.camera's keys (src/scene/keys/render_keys.cpp): keys of the other
 // dimension (the camera's, and the 3D-only light, floor and tank keys), a
 // camera looking at itself and bad keyframes are refused, each
 // naming its key; paths and orbits read back from run.json's scene. And end
 // to end: the camera run.json records for a clip's last frame, pasted into
 // the scene, draws that frame again, byte for byte.
 
-#include "io/input_error.hpp"
-#include "io/scene.hpp"
 #include "render/render_settings.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/text.hpp"
 

@@ -1,8 +1,8 @@
 // End to end through the real program (src/cli/): outputs of a run, exit
 // codes, messages, and that bad input leaves nothing behind.
 
-#include "io/png_io.hpp"
-#include "io/scene.hpp"
+#include "output/png_io.hpp"
+#include "scene/scene.hpp"
 #include "sph/stage_times.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"

@@ -4,7 +4,7 @@
 // 1280x720 frames, yet pass the same frame through EGL and OSMesa and
 // through a PNG round trip; the JSON report; folder mode; --update.
 
-#include "io/png_io.hpp"
+#include "output/png_io.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
 #include "support/text.hpp"

@@ -3,13 +3,13 @@
 // when it refuses one, and never writes over a file it reads.
 
 #include "analysis/csv_table.hpp"
-#include "io/files.hpp"
-#include "io/input_error.hpp"
-#include "io/obj_mesh.hpp"
-#include "io/png_io.hpp"
-#include "io/scene.hpp"
+#include "output/files.hpp"
+#include "output/png_io.hpp"
 #include "render/gl_context.hpp"
 #include "render/text.hpp"
+#include "scene/input_error.hpp"
+#include "scene/obj_mesh.hpp"
+#include "scene/scene.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"
 #include "support/text.hpp"

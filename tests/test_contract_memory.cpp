@@ -3,7 +3,7 @@
 // cgroup's limit, whichever is least) is refused with exit 2 before anything
 // is written, naming that limit.
 
-#include "io/memory_limit.hpp"
+#include "scene/memory_limit.hpp"
 #include "support/run_limited.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"

@@ -1,7 +1,7 @@
 // Effects the scene names (src/sph/effects/): the list is exactly the scene's,
 // and each effect does what its paper says.
-#include "io/input_error.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/effects/surface_tension.hpp"
 #include "sph/sources/emitter.hpp"
 

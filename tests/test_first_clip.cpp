@@ -2,7 +2,7 @@
 // through the real program, a few frames, each of the scene's own size.
 // A guide whose example breaks is worse than none, so the example is tested.
 
-#include "io/png_io.hpp"
+#include "output/png_io.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>

@@ -4,10 +4,10 @@
 // corpora tests/fuzz/corpus/{obj,png}/). Each must load, or be refused with
 // the reader's own error naming the file.
 
-#include "io/input_error.hpp"
-#include "io/obj_mesh.hpp"
-#include "io/png_io.hpp"
-#include "io/scene.hpp"
+#include "output/png_io.hpp"
+#include "scene/input_error.hpp"
+#include "scene/obj_mesh.hpp"
+#include "scene/scene.hpp"
 #include "support/temp_folder.hpp"
 
 #include <algorithm>

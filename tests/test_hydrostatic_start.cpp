@@ -1,8 +1,8 @@
 // A column that starts hydrostatic (fluid.start, sph/hydrostatic_start.hpp)
 // and walls whose pressure carries the fluid's weight (solver.wall_pressure,
 // sph/params.hpp): the pressure at step 0, and the bottom layer's support.
-#include "io/scene.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/hydrostatic_start.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,8 +1,8 @@
-// Image comparison (src/io/image_compare.*): the metrics on cases whose
+// Image comparison (src/output/image_compare.*): the metrics on cases whose
 // values are known by hand, the verdict on either side of each threshold, and
 // the difference image.
 
-#include "io/image_compare.hpp"
+#include "output/image_compare.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,11 +1,11 @@
-// The key walk (src/io/key_walk.hpp) over lists of objects (KeyList): an
+// The key walk (src/scene/key_walk.hpp) over lists of objects (KeyList): an
 // element is exactly one of its alternatives, a required key must be given, a
 // key for some values only is refused elsewhere and not written, the
 // element's declared check names its field, and the list is written as it is
 // read back, absent values left out.
 
-#include "io/input_error.hpp"
-#include "io/key_walk.hpp"
+#include "scene/input_error.hpp"
+#include "scene/key_walk.hpp"
 
 #include <catch2/catch.hpp>
 #include <optional>

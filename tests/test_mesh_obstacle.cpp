@@ -1,14 +1,14 @@
-// Mesh obstacles (src/sph/triangle_mesh.*, src/io/obj_mesh.*, the mesh case
+// Mesh obstacles (src/sph/triangle_mesh.*, src/scene/obj_mesh.*, the mesh case
 // of src/sph/boundaries/obstacles.cpp and of the scene's effects.obstacles): a cube mesh
 // against the analytic box, an icosphere against the analytic sphere, the
 // OBJ file's checks and path rule, a dam break that never puts fluid inside,
 // and the renderer.
-#include "io/input_error.hpp"
-#include "io/obj_mesh.hpp"
-#include "io/scene.hpp"
-#include "io/scene_setup.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+#include "scene/input_error.hpp"
+#include "scene/obj_mesh.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/boundaries/obstacles.hpp"
 #include "sph/boundaries/triangle_mesh.hpp"
 #include "support/temp_folder.hpp"

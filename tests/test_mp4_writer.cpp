@@ -1,8 +1,8 @@
-// src/io/mp4_writer: clips written to a temporary folder and decoded back
+// src/output/mp4_writer: clips written to a temporary folder and decoded back
 // with libavformat/libavcodec, as a player would.
 
-#include "io/libav_handles.hpp"
-#include "io/mp4_writer.hpp"
+#include "output/libav_handles.hpp"
+#include "output/mp4_writer.hpp"
 #include "support/file_size_cap.hpp"
 #include "support/temp_folder.hpp"
 

@@ -1,8 +1,8 @@
-// src/io/mp4_writer_thread: the encoder on its own thread writes the same
+// src/output/mp4_writer_thread: the encoder on its own thread writes the same
 // bytes as the sequential path (STYLE.md point 13), reports failures on the
 // caller's thread, and times itself.
 
-#include "io/mp4_writer_thread.hpp"
+#include "output/mp4_writer_thread.hpp"
 #include "support/file_size_cap.hpp"
 #include "support/temp_folder.hpp"
 

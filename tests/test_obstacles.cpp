@@ -2,12 +2,12 @@
 // the keys and their checks, the sampling of the solid, the rest density
 // beside an obstacle, and dam breaks against obstacles that never let fluid
 // inside.
-#include "io/input_error.hpp"
-#include "io/scene.hpp"
-#include "io/scene_setup.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/palette.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/boundaries/obstacles.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"

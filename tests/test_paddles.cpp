@@ -5,9 +5,9 @@
 // fluid never reaches leaves the fluid bit for bit as it is without it, the
 // time step and the watchdog count the paddle's speed, and bad input is
 // refused with its field named.
-#include "io/input_error.hpp"
-#include "io/scene.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/boundaries/paddles.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"

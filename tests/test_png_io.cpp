@@ -1,7 +1,7 @@
-// PNG writing and reading (src/io/png_io.*): exact round trips, atomic
+// PNG writing and reading (src/output/png_io.*): exact round trips, atomic
 // writes, clear errors, and the writer thread.
 
-#include "io/png_io.hpp"
+#include "output/png_io.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>

@@ -3,13 +3,13 @@
 // tests/golden/, impostors look like the seed's meshes, and images are the
 // right way up. Set SPHCLIP_UPDATE_GOLDEN=1 to rewrite the golden images
 // (then look at them before committing).
-#include "io/image_compare.hpp"
-#include "io/png_io.hpp"
-#include "io/scene_setup.hpp"
+#include "output/image_compare.hpp"
+#include "output/png_io.hpp"
 #include "render/colour_maps.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/sphere_geometry.hpp"
+#include "scene/scene_setup.hpp"
 #include "support/golden_frames.hpp"
 #include "support/temp_folder.hpp"
 

@@ -2,8 +2,8 @@
 // colour field's default range follows from the scene's physics, an explicit
 // range is used as given, and a run whose frames fall mostly outside the
 // range says so on stderr and in run.json.
-#include "io/scene.hpp"
 #include "render/render_settings.hpp"
+#include "scene/scene.hpp"
 #include "support/run_sphclip.hpp"
 
 #include <catch2/catch.hpp>

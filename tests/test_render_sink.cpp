@@ -2,10 +2,10 @@
 // writes the same PNG and MP4 bytes as the sequential one (STYLE.md point 13),
 // and reports what each frame cost.
 
-#include "io/mp4_writer.hpp"
-#include "io/scene_setup.hpp"
+#include "output/mp4_writer.hpp"
 #include "render/gl_context.hpp"
 #include "render/render_sink.hpp"
+#include "scene/scene_setup.hpp"
 #include "support/temp_folder.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,7 +1,7 @@
 // The render benchmark's drawing variants (tests/bench/render_variants.*):
 // without a variant they draw the renderer's frame, pixel for pixel; with
 // one, nearly the same picture.
-#include "io/image_compare.hpp"
+#include "output/image_compare.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render_variants.hpp"

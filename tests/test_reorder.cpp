@@ -2,8 +2,8 @@
 // solver.reorder_every): a permutation that keeps every particle whole, that
 // the solvers' own arrays follow, and that changes round-off only; a run with
 // it is the same bits on 1 and 2 threads, and the exports do not see it.
-#include "io/particle_export.hpp"
-#include "io/scene_setup.hpp"
+#include "output/particle_export.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/neighbours/sorted_grid.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"

@@ -1,8 +1,8 @@
-// Scene parsing (src/io/scene.cpp): defaults, the schema's checks, --set
+// Scene parsing (src/scene/scene.cpp): defaults, the schema's checks, --set
 // overrides, effects, the resolved-scene round trip and the key list.
 
-#include "io/input_error.hpp"
-#include "io/scene.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene.hpp"
 #include "support/text.hpp"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
-// Paths named in a scene stay inside their folder (src/io/scene_paths.cpp).
+// Paths named in a scene stay inside their folder (src/scene/scene_paths.cpp).
 
-#include "io/input_error.hpp"
-#include "io/scene_paths.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene_paths.hpp"
 
 #include <catch2/catch.hpp>
 #include <filesystem>

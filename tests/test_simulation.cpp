@@ -1,6 +1,6 @@
 // Whole simulations built from scenes: conservation, walls, frame timing,
 // thread-count determinism (STYLE.md point 14) and the non-finite check.
-#include "io/scene_setup.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"

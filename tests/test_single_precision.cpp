@@ -5,8 +5,8 @@
 // round-off, each viscosity's share included; and the scene's
 // solver.precision key. (tests/test_simulation.cpp and test_reorder.cpp
 // check that 1 and 2 threads give the same bits, in both precisions.)
-#include "io/input_error.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/density.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
 #include "sph/effects/laminar_viscosity.hpp"

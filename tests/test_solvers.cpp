@@ -1,8 +1,8 @@
 // The modern solvers and what they are built from: Tait's law, wall
 // particles, the adaptive time step, the integrators, and the dfsph pressure
 // solves.
-#include "io/scene.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/boundaries/boundary_set.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/neighbours/all_pairs.hpp"

@@ -2,7 +2,7 @@
 // once sizes settle, a step reuses the memory of the one before, whatever the
 // solver, the search, the effects and the sorting of the particle arrays.
 // Counted by replacing the global operator new for this test binary.
-#include "io/scene_setup.hpp"
+#include "scene/scene_setup.hpp"
 
 #include <atomic>
 #include <catch2/catch.hpp>

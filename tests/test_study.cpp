@@ -5,7 +5,7 @@
 #include "analysis/frame_series.hpp"
 #include "analysis/pareto_front.hpp"
 #include "analysis/study_plan.hpp"
-#include "io/input_error.hpp"
+#include "scene/input_error.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/small_tank.hpp"
 #include "support/temp_folder.hpp"

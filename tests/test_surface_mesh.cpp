@@ -1,18 +1,18 @@
-// The fluid surface (src/render/surface/, src/io/surface_export.*): the 2D
+// The fluid surface (src/render/surface/, src/output/surface_export.*): the 2D
 // region and the 3D level set's mesh sit where the particles' discs and
 // spheres end, are closed, face out, carry the colour field to their
 // vertices; the .ply's bytes follow its header and the .vdb reads back with
 // OpenVDB; EGL and OSMesa draw the same surface and match the golden images;
 // bad surface keys exit 2 naming the key. (The .ply read by VTK's own reader:
 // tests/exports/check_surface_with_vtk.py.)
-#include "io/image_compare.hpp"
-#include "io/png_io.hpp"
-#include "io/scene_setup.hpp"
-#include "io/surface_export.hpp"
+#include "output/image_compare.hpp"
+#include "output/png_io.hpp"
+#include "output/surface_export.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/surface/frame_surface.hpp"
 #include "render/surface/reconstruct.hpp"
+#include "scene/scene_setup.hpp"
 #include "support/golden_frames.hpp"
 #include "support/run_sphclip.hpp"
 #include "support/temp_folder.hpp"

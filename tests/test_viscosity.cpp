@@ -3,9 +3,9 @@
 // gets, that their pair terms conserve momentum, that Morris's model gives
 // the fluid's own viscous acceleration, that wcsph's pressure pass adds them
 // as the effects do, and that a viscous fluid spreads slowly.
-#include "io/input_error.hpp"
-#include "io/keys/effect_registry.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/input_error.hpp"
+#include "scene/keys/effect_registry.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/density.hpp"
 #include "sph/effects/artificial_viscosity.hpp"
 #include "sph/effects/laminar_viscosity.hpp"

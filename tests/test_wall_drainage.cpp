@@ -21,8 +21,8 @@
 // (wcsph) against u = 6.7 mm/s for delta = s: it is such a film, no defect
 // (and thinner than Jeffreys's 6 mm at 0.11 m and 0.3 s, which a particle
 // model cannot resolve below a spacing).
-#include "io/scene.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_setup.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>

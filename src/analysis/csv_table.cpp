@@ -1,6 +1,6 @@
 #include "analysis/csv_table.hpp"
 
-#include "io/files.hpp"
+#include "output/files.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #include "analysis/run_outputs.hpp"
 
 #include "analysis/csv_table.hpp"
-#include "io/files.hpp"
+#include "output/files.hpp"
 
 #include <algorithm>
 #include <cmath>

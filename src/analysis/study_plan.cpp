@@ -1,6 +1,6 @@
 #include "analysis/study_plan.hpp"
 
-#include "io/input_error.hpp"
+#include "scene/input_error.hpp"
 
 #include <fmt/format.h>
 #include <set>

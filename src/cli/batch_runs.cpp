@@ -2,7 +2,7 @@
 
 #include "cli/child_process.hpp"
 #include "cli/data_folders.hpp"
-#include "io/input_error.hpp"
+#include "scene/input_error.hpp"
 
 #include <cmath>
 #include <cstdio>

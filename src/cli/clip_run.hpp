@@ -6,8 +6,8 @@
 // always says how the run ended and where the time went.
 
 #include "cli/run_command.hpp"
-#include "io/scene.hpp"
 #include "render/gl_context.hpp"
+#include "scene/scene.hpp"
 
 #include <filesystem>
 #include <memory>

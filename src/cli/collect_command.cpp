@@ -5,7 +5,7 @@
 #include "cli/run_child.hpp"
 #include "cli/study_command.hpp"
 #include "cli/validate_command.hpp"
-#include "io/input_error.hpp"
+#include "scene/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

@@ -1,9 +1,9 @@
 #include "cli/compare_command.hpp"
 
 #include "cli/exit_codes.hpp"
-#include "io/files.hpp"
-#include "io/input_error.hpp"
-#include "io/png_io.hpp"
+#include "output/files.hpp"
+#include "output/png_io.hpp"
+#include "scene/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

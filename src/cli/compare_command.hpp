@@ -2,7 +2,7 @@
 // `sphclip compare REF.png TEST.png`: checks a rendered image against a
 // reference one within tolerances (README, "Using sphclip compare in CI").
 
-#include "io/image_compare.hpp"
+#include "output/image_compare.hpp"
 
 #include <string>
 

@@ -1,7 +1,7 @@
 #include "cli/data_folders.hpp"
 
 #include "cli/child_process.hpp"
-#include "io/input_error.hpp"
+#include "scene/input_error.hpp"
 
 #include <fmt/format.h>
 #include <string>

@@ -11,9 +11,9 @@
 #include "cli/study_command.hpp"
 #include "cli/validate_command.hpp"
 #include "cli/wait_policy.hpp"
-#include "io/input_error.hpp"
 #include "parallel/world.hpp"
 #include "render/gl_context.hpp"
+#include "scene/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -37,7 +37,7 @@ std::string markdown_cell(const std::string& text) {
     return out;
 }
 
-// The key table of the scene schema (io/keys/, sph/solvers/solver_keys.cpp,
+// The key table of the scene schema (scene/keys/, sph/solvers/solver_keys.cpp,
 // sph/effects/); as Markdown it is docs/scene-keys.md, which a test keeps current.
 void print_keys(bool markdown) {
     const auto keys = sph::scene_keys();

@@ -1,7 +1,7 @@
 #include "cli/output_folder.hpp"
 
-#include "io/files.hpp"
-#include "io/input_error.hpp"
+#include "output/files.hpp"
+#include "scene/input_error.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -6,8 +6,8 @@
 #include "cli/child_process.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/set_options.hpp"
-#include "io/files.hpp"
-#include "io/input_error.hpp"
+#include "output/files.hpp"
+#include "scene/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cctype>

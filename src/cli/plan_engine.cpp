@@ -6,7 +6,7 @@
 #include "cli/plan_batch.hpp"
 #include "cli/study_command.hpp"
 #include "cli/validate_command.hpp"
-#include "io/input_error.hpp"
+#include "scene/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

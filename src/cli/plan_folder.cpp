@@ -1,9 +1,9 @@
 #include "cli/plan_folder.hpp"
 
 #include "cli/set_options.hpp"
-#include "io/files.hpp"
-#include "io/input_error.hpp"
-#include "io/scene.hpp"
+#include "output/files.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene.hpp"
 
 #include <cstdlib>
 #include <fmt/format.h>
@@ -35,7 +35,7 @@ std::vector<std::string> command_line(const Plan& plan, const ChildRunRequest& r
     return argv;
 }
 
-// A plan's file, within its limit (io/files.hpp): a plan folder is the
+// A plan's file, within its limit (output/files.hpp): a plan folder is the
 // user's, and a file there may be anything.
 std::string read_plan_file(const fs::path& file) {
     try {

@@ -1,7 +1,7 @@
 #include "cli/plot.hpp"
 
 #include "cli/child_process.hpp"
-#include "io/files.hpp"
+#include "output/files.hpp"
 
 #include <fmt/format.h>
 

@@ -1,7 +1,7 @@
 #include "cli/progress.hpp"
 
 #include "cli/console.hpp"
-#include "io/input_error.hpp"
+#include "scene/input_error.hpp"
 
 #include <cmath>
 #include <cstdlib>

@@ -8,13 +8,13 @@
 #include "cli/progress.hpp"
 #include "cli/set_options.hpp"
 #include "cli/stop_signals.hpp"
-#include "io/files.hpp"
-#include "io/input_error.hpp"
+#include "output/files.hpp"
 #include "parallel/world.hpp"
 #include "render/fonts.hpp"
 #include "render/gl_context.hpp"
 #include "render/render_settings.hpp"
 #include "render/surface/reconstruct.hpp"
+#include "scene/input_error.hpp"
 #include "sph/single_precision/single_passes.hpp"
 
 #include <CLI/CLI.hpp>

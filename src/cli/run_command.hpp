@@ -1,7 +1,7 @@
 #pragma once
 // `sphclip run`: scene -> simulation -> per-frame outputs.
 
-#include "io/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <filesystem>
 #include <optional>

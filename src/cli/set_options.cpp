@@ -1,6 +1,6 @@
 #include "cli/set_options.hpp"
 
-#include "io/input_error.hpp"
+#include "scene/input_error.hpp"
 
 #include <cmath>
 #include <cstdlib>

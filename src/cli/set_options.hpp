@@ -1,7 +1,7 @@
 #pragma once
 // `--set KEY=VALUE`, as `run`, `study` and `validate` take it.
 
-#include "io/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <CLI/CLI.hpp>
 #include <string>

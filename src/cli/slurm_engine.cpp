@@ -3,8 +3,8 @@
 #include "cli/child_process.hpp"
 #include "cli/console.hpp"
 #include "cli/exit_codes.hpp"
-#include "io/files.hpp"
-#include "io/input_error.hpp"
+#include "output/files.hpp"
+#include "scene/input_error.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -13,7 +13,7 @@
 #include "cli/set_options.hpp"
 #include "cli/study_report.hpp"
 #include "cli/validation_cases.hpp"
-#include "io/input_error.hpp"
+#include "scene/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

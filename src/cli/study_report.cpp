@@ -1,7 +1,7 @@
 #include "cli/study_report.hpp"
 
 #include "cli/plot.hpp"
-#include "io/files.hpp"
+#include "output/files.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,8 +9,8 @@
 #include "cli/run_child.hpp"
 #include "cli/set_options.hpp"
 #include "cli/validation_cases.hpp"
-#include "io/files.hpp"
-#include "io/input_error.hpp"
+#include "output/files.hpp"
+#include "scene/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>

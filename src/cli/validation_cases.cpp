@@ -6,7 +6,7 @@
 #include "analysis/run_outputs.hpp"
 #include "analysis/surge_front.hpp"
 #include "cli/plot.hpp"
-#include "io/files.hpp"
+#include "output/files.hpp"
 
 #include <algorithm>
 #include <cmath>

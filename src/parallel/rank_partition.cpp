@@ -1,7 +1,7 @@
 #include "parallel/rank_partition.hpp"
 
-#include "io/input_error.hpp"
 #include "parallel/world.hpp"
+#include "scene/input_error.hpp"
 #include "sph/effects/surface_tension.hpp"
 #include "sph/solvers/explicit_solver.hpp"
 

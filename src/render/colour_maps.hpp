@@ -1,7 +1,7 @@
 #pragma once
 // Perceptual colour maps, as tables the renderer uploads as 1D textures.
 
-#include "io/render_choices.hpp"
+#include "scene/render_choices.hpp"
 
 #include <array>
 #include <cstdint>

@@ -14,7 +14,7 @@ namespace sph {
 // font). Why a choice was not taken goes to `warning` (empty: none).
 std::string find_font(const std::string& requested, std::string& warning);
 // Why FreeType cannot draw with `font_file` (render.font): it is not a
-// regular file within io/files.hpp's font_file_limit, or not a font; empty
+// regular file within output/files.hpp's font_file_limit, or not a font; empty
 // when it can. A run asks before it writes anything.
 std::string font_problem(const std::string& font_file);
 // Where Debian (fonts-dejavu-core), Fedora and Arch put DejaVu Sans.

@@ -3,7 +3,7 @@
 // and the render benchmark's variants (tests/bench/render_variants.cpp), so
 // that what they measure ends as the product's frames do.
 
-#include "io/image.hpp"
+#include "output/image.hpp"
 #include "render/frame_renderer.hpp"
 
 #include <chrono>

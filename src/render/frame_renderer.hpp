@@ -7,7 +7,7 @@
 // the spheres on the GPU (sphere_pass.hpp), the solids (scenery.hpp), the
 // overlay (overlay.hpp) and the GL objects' lifetime (gl_resources.hpp).
 
-#include "io/image.hpp"
+#include "output/image.hpp"
 #include "render/camera.hpp"
 #include "render/render_settings.hpp"
 #include "sph/snapshot.hpp"

@@ -4,7 +4,7 @@
 // framebuffer objects, so no window system surface is ever needed. One
 // context per process at a time: creating it loads the GL functions.
 
-#include "io/render_choices.hpp"
+#include "scene/render_choices.hpp"
 
 #include <memory>
 #include <optional>

@@ -4,8 +4,8 @@
 // is while a FrameRenderer lives), the shader compile and link helpers, the
 // colour map as a texture, and the frame's render target.
 
-#include "io/image.hpp"
-#include "io/render_choices.hpp"
+#include "output/image.hpp"
+#include "scene/render_choices.hpp"
 
 #include <glad/gl.h>
 #include <string>

@@ -5,7 +5,7 @@
 // the dark end of every colour map visible (viridis' purple, turbo's navy);
 // dark is the look before light and depth came in.
 
-#include "io/render_choices.hpp"
+#include "scene/render_choices.hpp"
 
 #include <glm/glm.hpp>
 

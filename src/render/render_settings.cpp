@@ -1,6 +1,6 @@
 #include "render/render_settings.hpp"
 
-#include "io/scene_setup.hpp"
+#include "scene/scene_setup.hpp"
 
 #include <algorithm>
 #include <cmath>

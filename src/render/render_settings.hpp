@@ -2,8 +2,8 @@
 // What a frame shows and how it is drawn, filled from the scene's render
 // section: a plain struct with defaults and units (STYLE.md point 10).
 
-#include "io/scene.hpp"
 #include "render/surface/surface_mesh.hpp"
+#include "scene/scene.hpp"
 
 #include <array>
 #include <glm/glm.hpp>

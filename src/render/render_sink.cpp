@@ -1,6 +1,6 @@
 #include "render/render_sink.hpp"
 
-#include "io/particle_export.hpp"
+#include "output/particle_export.hpp"
 
 #include <fmt/format.h>
 #include <memory>

@@ -4,9 +4,9 @@
 // encoder, each on a worker thread of its own. Rendering stays on the calling
 // thread, which owns the GL context.
 
-#include "io/frame_sink.hpp"
-#include "io/mp4_writer_thread.hpp"
-#include "io/png_io.hpp"
+#include "output/frame_sink.hpp"
+#include "output/mp4_writer_thread.hpp"
+#include "output/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 

@@ -1,6 +1,6 @@
 #include "render/text.hpp"
 
-#include "io/files.hpp"
+#include "output/files.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // A scene key declared as data, next to the component that owns it: its
 // path, the settings field it fills (a member pointer), its unit, bounds and
 // one-line doc. Its default is the field's initialiser in the settings
-// struct, written once. One table of keys per settings struct; io/ walks the
+// struct, written once. One table of keys per settings struct; scene/ walks the
 // tables to read a scene with its checks, write run.json's `scene` and list
 // the keys (`sphclip keys`), so this header knows nothing of JSON.
 

@@ -7,7 +7,7 @@
 // pressure stage).
 //   sphclip_bench_effects [--quick] [--steps N] [--csv FILE]
 
-#include "io/scene_setup.hpp"
+#include "scene/scene_setup.hpp"
 
 #include <chrono>
 #include <cstdio>

@@ -1,5 +1,5 @@
 // Encode benchmark: frames per second and file size of the MP4 encoder
-// (colour conversion, libx264, muxing: src/io/mp4_writer) by frame size, x264
+// (colour conversion, libx264, muxing: src/output/mp4_writer) by frame size, x264
 // preset and x264 thread count, on the frames of the built-in scene (the 2D
 // dam break, simulated and rendered once, then encoded again and again). A
 // program that prints a table, not a timed test; the run's defaults come
@@ -10,10 +10,10 @@
 //   build/sphclip_bench_encode --repeat 5 --csv F   # also written to F
 //   build/sphclip_bench_encode --tiny               # one small case (CI)
 #include "bench_support.hpp"
-#include "io/mp4_writer.hpp"
-#include "io/scene_setup.hpp"
+#include "output/mp4_writer.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+#include "scene/scene_setup.hpp"
 
 #include <algorithm>
 #include <chrono>

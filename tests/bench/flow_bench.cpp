@@ -24,7 +24,7 @@
 //                      [--rounds N] [--load N] [--scenes DIR] [--csv FILE]
 
 #include "bench_support.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
 

@@ -18,8 +18,8 @@
 //   build/sphclip_bench_render --tiny                # one small frame per case (CI)
 //   build/sphclip_bench_render --light --size 1920x1080   # light and depth's rows only
 #include "bench_support.hpp"
-#include "io/image_compare.hpp"
-#include "io/png_io.hpp"
+#include "output/image_compare.hpp"
+#include "output/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render_variants.hpp"

@@ -5,7 +5,7 @@
 // sprites; a front-to-back order; conservative depth. Built here from the
 // renderer's parts (src/render/), so the product keeps only what scenes use.
 
-#include "io/image.hpp"
+#include "output/image.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/render_settings.hpp"
 #include "sph/snapshot.hpp"

@@ -33,7 +33,7 @@
 //                      [--reorder 0,20] [--shuffled] [--no-dsph] [--csv FILE]
 
 #include "bench_support.hpp"
-#include "io/scene_setup.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
 

@@ -13,7 +13,7 @@
 //   build/sphclip_bench_surface --counts 100000 --backends egl
 //   build/sphclip_bench_surface --tiny           # one small frame (CI)
 #include "bench_support.hpp"
-#include "io/png_io.hpp"
+#include "output/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render/surface/reconstruct.hpp"

@@ -1,11 +1,11 @@
-// libFuzzer target for the OBJ mesh reader (src/io/obj_mesh.cpp): any bytes
+// libFuzzer target for the OBJ mesh reader (src/scene/obj_mesh.cpp): any bytes
 // must either give a closed solid or an InputError naming the scene's field.
 // Another exception, a crash, undefined behaviour, a huge allocation or a
 // hang is a finding. Built only with -DSPHCLIP_FUZZ=ON and clang; run with
 // tests/fuzz/run_fuzzer.sh obj SECONDS.
 
-#include "io/input_error.hpp"
-#include "io/obj_mesh.hpp"
+#include "scene/input_error.hpp"
+#include "scene/obj_mesh.hpp"
 
 #include <cmath>
 #include <cstddef>

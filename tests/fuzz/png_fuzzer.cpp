@@ -1,10 +1,10 @@
-// libFuzzer target for the PNG reader of `sphclip compare` (src/io/png_io.cpp,
+// libFuzzer target for the PNG reader of `sphclip compare` (src/output/png_io.cpp,
 // libpng underneath): any bytes must either give an image whose pixel
 // buffer matches its size, or an ImageReadError. Another exception, a crash,
 // undefined behaviour, a huge allocation or a hang is a finding. Built only
 // with -DSPHCLIP_FUZZ=ON and clang; run with tests/fuzz/run_fuzzer.sh png SECONDS.
 
-#include "io/png_io.hpp"
+#include "output/png_io.hpp"
 
 #include <cstddef>
 #include <cstdint>

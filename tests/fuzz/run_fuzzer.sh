@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes one of sphclip's readers for SECONDS (default 60) with libFuzzer,
 # ASan and UBSan: tests/fuzz/run_fuzzer.sh [scene|obj|png] [SECONDS]
-#   scene: the scene parser (src/io/scene.cpp), the default
-#   obj:   the OBJ mesh reader (src/io/obj_mesh.cpp)
-#   png:   the PNG reader of `sphclip compare` (src/io/png_io.cpp)
+#   scene: the scene parser (src/scene/scene.cpp), the default
+#   obj:   the OBJ mesh reader (src/scene/obj_mesh.cpp)
+#   png:   the PNG reader of `sphclip compare` (src/output/png_io.cpp)
 #
 # Needs clang-14 and libFuzzer's runtime, Debian's libclang-rt-14-dev
 # (apt-get install clang-14 libclang-rt-14-dev); not part of .ci/setup, as CI

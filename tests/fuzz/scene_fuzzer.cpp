@@ -1,10 +1,10 @@
-// libFuzzer target for the scene parser (src/io/scene.cpp): any text must
+// libFuzzer target for the scene parser (src/scene/scene.cpp): any text must
 // either give a scene or an InputError. Another exception, a crash, undefined
 // behaviour, a huge allocation or a hang is a finding. Built only with
 // -DSPHCLIP_FUZZ=ON and clang; run with tests/fuzz/run_fuzzer.sh.
 
-#include "io/input_error.hpp"
-#include "io/scene.hpp"
+#include "scene/input_error.hpp"
+#include "scene/scene.hpp"
 
 #include <cmath>
 #include <cstddef>

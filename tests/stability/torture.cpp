@@ -1,6 +1,6 @@
 #include "torture.hpp"
 
-#include "io/scene_setup.hpp"
+#include "scene/scene_setup.hpp"
 #include "sph/diagnostics.hpp"
 
 #include <algorithm>

@@ -5,12 +5,12 @@
 // (SPHCLIP_UPDATE_GOLDEN=1 rewrites the goldens: look at them before
 // committing).
 
-#include "io/image_compare.hpp"
-#include "io/png_io.hpp"
-#include "io/scene.hpp"
-#include "io/scene_setup.hpp"
+#include "output/image_compare.hpp"
+#include "output/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_setup.hpp"
 
 #include <catch2/catch.hpp>
 #include <cstdlib>

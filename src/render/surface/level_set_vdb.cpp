@@ -1,6 +1,6 @@
 // The 3D surface with OpenVDB (reconstruct.hpp): particles to a narrow-band
 // level set, smoothed and eroded, meshed at zero; and the .vdb export.
-#include "io/files.hpp"
+#include "output/files.hpp"
 #include "render/surface/reconstruct.hpp"
 
 #include <algorithm>

@@ -11,8 +11,8 @@
 // filled. The colour field is then carried from the particles to the
 // vertices (vertex_colours.hpp).
 
-#include "io/render_choices.hpp"
 #include "render/surface/surface_mesh.hpp"
+#include "scene/render_choices.hpp"
 #include "sph/snapshot.hpp"
 
 #include <filesystem>

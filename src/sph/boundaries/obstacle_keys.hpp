@@ -20,7 +20,7 @@ struct SceneObstacle {
     std::optional<std::string> mesh_file; // the mesh's OBJ file as the scene names it
     double mesh_scale = 1;                // file units to m
     Vec3 mesh_offset{0, 0, 0};            // m, added after scaling
-    // Read when the scene loads (io/), in scene coordinates: the file is read
+    // Read when the scene loads (scene/), in scene coordinates: the file is read
     // once and the simulation and the renderer share it.
     std::shared_ptr<const TriangleMesh> mesh;
 };

@@ -22,7 +22,7 @@ struct ViscositySettings {
     double mu = 0;                                  // Pa.s; the scene's default: material.viscosity
     // Viscosity is a property of the fluid: without the key, material.viscosity
     // with the solver's model, on wherever mu > 0. (`Scene` is the rest of the
-    // scene, read before the effects: io/keys/effect_registry.hpp.)
+    // scene, read before the effects: scene/keys/effect_registry.hpp.)
     template <class Scene>
     static ViscositySettings defaults(const Scene& scene) {
         return {scene.capabilities.viscosity_model, scene.material_viscosity};

@@ -1,0 +1,232 @@
+#include "scene/scene_setup.hpp"
+
+#include "scene/input_error.hpp"
+#include "scene/keys/effect_registry.hpp"
+#include "sph/effects/artificial_viscosity.hpp"
+#include "sph/effects/gravity.hpp"
+#include "sph/effects/laminar_viscosity.hpp"
+#include "sph/effects/seed_viscosity.hpp"
+#include "sph/effects/surface_tension.hpp"
+#include "sph/effects/xsph.hpp"
+#include "sph/lattice.hpp"
+#include "sph/sources/emitter.hpp"
+
+#include <fmt/format.h>
+
+namespace sph {
+
+namespace {
+template <int D>
+Vec<D> to_vec(const Vec3& v) {
+    Vec<D> out;
+    for (int a = 0; a < D; ++a)
+        out[a] = v[a];
+    return out;
+}
+
+template <int D>
+std::vector<Obstacle<D>> make_obstacles(const Scene& scene) {
+    std::vector<Obstacle<D>> obstacles;
+    for (const auto& o : scene.effects.obstacles)
+        obstacles.push_back(
+            {o.shape, {to_vec<D>(o.min), to_vec<D>(o.max)}, to_vec<D>(o.centre), o.radius, o.mesh});
+    return obstacles;
+}
+} // namespace
+
+template <int D>
+std::vector<Paddle<D>> make_paddles(const Scene& scene) {
+    std::vector<Paddle<D>> paddles;
+    for (const auto& o : scene.effects.paddles) {
+        Paddle<D> p;
+        p.box = {to_vec<D>(o.min), to_vec<D>(o.max)};
+        p.motion = o.motion;
+        p.amplitude = to_vec<D>(o.amplitude);
+        p.period = o.period;
+        p.velocity = to_vec<D>(o.velocity);
+        p.start = o.start;
+        p.end = o.end;
+        paddles.push_back(p);
+    }
+    return paddles;
+}
+
+template <int D>
+Params<D> make_params(const Scene& scene, const Derived& derived) {
+    Params<D> p;
+    p.mass = derived.mass;
+    p.h = derived.h;
+    p.rest_density = scene.material.rest_density;
+    p.bulk_modulus = scene.material.bulk_modulus;
+    p.spacing = scene.fluid.spacing;
+    p.kernel = derived.kernel;
+    p.integrator = scene.solver.integrator;
+    p.walls = derived.walls;
+    p.time_step = time_step_settings(scene);
+    p.pressure_solve = {scene.solver.tolerance, scene.solver.divergence_tolerance,
+                        scene.solver.min_iterations, scene.solver.max_iterations,
+                        scene.solver.warm_start};
+    p.watchdog = {scene.watchdog.retries, scene.watchdog.max_density_ratio,
+                  scene.watchdog.max_displacement, derived.max_speed,
+                  !scene.watchdog.max_speed.has_value()};
+    p.reorder_every = scene.solver.reorder_every;
+    p.precision = derived.precision;
+    if (scene.solver.wall_pressure == WallPressure::hydrostatic && scene.effects.gravity &&
+        derived.walls == WallModel::particles)
+        p.wall_gravity = to_vec<D>(scene.effects.gravity->acceleration);
+    p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
+    p.obstacles = make_obstacles<D>(scene);
+    p.paddles = make_paddles<D>(scene);
+    return p;
+}
+
+// The law by which a hydrostatic start compresses the lattice: the solver's
+// equation of state (sph/hydrostatic_start.hpp); none where the fluid is
+// incompressible or nothing weighs.
+StartLaw start_law(const Scene& scene) {
+    if (scene.fluid.start != FluidStart::hydrostatic || !scene.effects.gravity)
+        return StartLaw::none;
+    switch (scene.solver.name) {
+    case SolverKind::seed:
+        return StartLaw::linear;
+    case SolverKind::wcsph:
+        return StartLaw::tait;
+    default:
+        return StartLaw::none;
+    }
+}
+
+template <int D>
+State<D> make_initial_state(const Scene& scene, const Derived& derived) {
+    const Real s = scene.fluid.spacing;
+    const StartLaw law = start_law(scene);
+    const Vec<D> gravity =
+        scene.effects.gravity ? to_vec<D>(scene.effects.gravity->acceleration) : Vec<D>(0);
+    const Real g = glm::length(gravity);
+    const Vec<D> up = g > 0 ? -gravity / g : Vec<D>(0);
+    // Sites inside an obstacle or a paddle (at rest), or too near one, are
+    // left empty: a block may be placed across them.
+    std::vector<Obstacle<D>> obstacles = make_obstacles<D>(scene);
+    for (const Paddle<D>& paddle : make_paddles<D>(scene))
+        obstacles.push_back({ObstacleShape::box, paddle.box, Vec<D>(0), 0, nullptr});
+    State<D> state;
+    state.resize(derived.particles);
+    std::size_t next = 0;
+    for (const auto& block : scene.fluid.blocks) {
+        glm::vec<D, std::size_t> count;
+        std::size_t total = 1;
+        for (int a = 0; a < D; ++a) {
+            count[a] = lattice_count(block.min[a], block.max[a], s);
+            total *= count[a];
+        }
+        // The block's filled box (half a spacing beyond its outer sites), its
+        // highest and lowest points along `up`: a hydrostatic start's surface
+        // and fixed base.
+        Real top = 0, bottom = 0;
+        for (int a = 0; a < D; ++a) {
+            const Real lo = block.min[a], hi = block.min[a] + Real(count[a]) * s;
+            top += std::max(up[a] * lo, up[a] * hi);
+            bottom += std::min(up[a] * lo, up[a] * hi);
+        }
+        for (std::size_t k = 0; k < total; ++k) {
+            std::size_t rest = k;
+            Vec<D> x;
+            for (int a = 0; a < D; ++a) {
+                x[a] = block.min[a] + (Real(rest % count[a]) + Real(0.5)) * s;
+                rest /= count[a];
+            }
+            if (blocked_by_obstacle<D>(obstacles, x, s))
+                continue;
+            if (law != StartLaw::none)
+                x = hydrostatic_site<D>(x, up, top, bottom, law, g, scene.material.rest_density,
+                                        scene.material.bulk_modulus);
+            state.position[next] = x;
+            state.velocity[next] = to_vec<D>(block.velocity);
+            state.acceleration[next] = Vec<D>(0);
+            state.id[next] = static_cast<std::uint32_t>(next);
+            ++next;
+        }
+    }
+    if (next == 0)
+        throw InputError(scene.file, "effects.obstacles",
+                         "every fluid particle of the blocks lies inside an obstacle (or within "
+                         "half a spacing of one)");
+    state.resize(next);
+    return state;
+}
+
+template <int D>
+EffectList<D> make_effects(const Scene& scene) {
+    EffectList<D> effects;
+    for_each_effect(scene.effects,
+                    [&](const auto& settings) { effects.push_back(make_effect<D>(settings)); });
+    return effects;
+}
+
+template <int D>
+SourceList<D> make_sources(const Scene& scene) {
+    SourceList<D> sources;
+    for (std::size_t index = 0; index < scene.effects.emitters.size(); ++index) {
+        const SceneEmitter& e = scene.effects.emitters[index];
+        // The box's lattice, as for a fluid block; its thickness along v.
+        const Real spacing = scene.fluid.spacing;
+        const Vec<D> velocity = to_vec<D>(e.velocity);
+        const Vec<D> along = velocity / glm::length(velocity);
+        glm::vec<D, std::size_t> count;
+        std::size_t total = 1;
+        Real thickness = 0;
+        for (int a = 0; a < D; ++a) {
+            count[a] = lattice_count(e.min[a], e.max[a], spacing);
+            total *= count[a];
+            thickness += std::abs(along[a]) * Real(count[a]) * spacing;
+        }
+        // A disc inlet keeps the sites within its radius of the axis.
+        const Vec<D> centre = (to_vec<D>(e.min) + to_vec<D>(e.max)) / Real(2);
+        std::vector<Vec<D>> sites;
+        sites.reserve(total);
+        for (std::size_t k = 0; k < total; ++k) {
+            std::size_t rest = k;
+            Vec<D> x;
+            for (int a = 0; a < D; ++a) {
+                x[a] = e.min[a] + (Real(rest % count[a]) + Real(0.5)) * spacing;
+                rest /= count[a];
+            }
+            const Vec<D> off = x - centre;
+            if (!e.radius || glm::length(off - glm::dot(off, along) * along) <= *e.radius)
+                sites.push_back(x);
+        }
+        if (sites.empty())
+            throw InputError(scene.file, fmt::format("effects.emitters[{}].radius", index),
+                             fmt::format("no lattice site of the box lies within {} m of its "
+                                         "axis; give a radius of at least half a spacing ({} m)",
+                                         *e.radius, spacing / 2));
+        sources.push_back(std::make_unique<Emitter<D>>(Box<D>{to_vec<D>(e.min), to_vec<D>(e.max)},
+                                                       spacing, std::move(sites), velocity,
+                                                       thickness, e.start, e.end));
+    }
+    return sources;
+}
+
+template <int D>
+Simulation<D> make_simulation(const Scene& scene, const Derived& derived) {
+    const Params<D> params = make_params<D>(scene, derived);
+    return Simulation<D>(params, make_initial_state<D>(scene, derived),
+                         make_solver<D>(scene.solver.name, params),
+                         make_neighbour_search<D>(scene.solver.neighbour_search),
+                         make_effects<D>(scene), make_sources<D>(scene));
+}
+
+template std::vector<Paddle<2>> make_paddles<2>(const Scene&);
+template std::vector<Paddle<3>> make_paddles<3>(const Scene&);
+template Params<2> make_params<2>(const Scene&, const Derived&);
+template Params<3> make_params<3>(const Scene&, const Derived&);
+template State<2> make_initial_state<2>(const Scene&, const Derived&);
+template State<3> make_initial_state<3>(const Scene&, const Derived&);
+template EffectList<2> make_effects<2>(const Scene&);
+template EffectList<3> make_effects<3>(const Scene&);
+template SourceList<2> make_sources<2>(const Scene&);
+template SourceList<3> make_sources<3>(const Scene&);
+template Simulation<2> make_simulation<2>(const Scene&, const Derived&);
+template Simulation<3> make_simulation<3>(const Scene&, const Derived&);
+
+} // namespace sph

@@ -2,8 +2,8 @@
 // dimension (the camera's, and the 3D-only light, floor and tank keys), a
 // camera looking at itself and bad keyframes are refused, each
 // naming its key; paths and orbits read back from run.json's scene. And end
-// to end: the camera run.json records for a clip's last frame, pasted into
-// the scene, draws that frame again, byte for byte.
+// to end: the camera run.json records for a clip's first and last frames,
+// pasted into the scene, draws that frame again, byte for byte.
 
 #include "render/render_settings.hpp"
 #include "scene/input_error.hpp"
@@ -168,7 +168,7 @@ TEST_CASE("a 3D-only render key on a 2D scene stops the run with exit 2, naming 
     sph::test::TempFolder tmp;
     sph::test::write_text(tmp / "flat.json", scene_2d);
     for (const char* set : {"render.shadows=true", "render.ambient_occlusion=true",
-                            "render.floor=false", "render.tank=true"}) {
+                            "render.floor=false", "render.tank=true", "render.cull_buried=true"}) {
         INFO(set);
         const auto result = sph::test::run_sphclip(tmp, {"run", (tmp / "flat.json").string(),
                                                          "--out", (tmp / "out").string(),
@@ -227,4 +227,14 @@ TEST_CASE("the camera run.json records, pasted back, draws the same frame", "[cl
     // The pasted camera is recorded as it was given.
     const json again = json::parse(sph::test::read_text(tmp / "fixed" / "run.json"));
     CHECK(again.at("camera").at("first") == camera.at("last"));
+    // The first frame's camera, pasted, draws the first frame again.
+    scene["render"]["camera"] = camera.at("first");
+    sph::test::write_text(tmp / "start.json", scene.dump());
+    const auto third = sph::test::run_sphclip(tmp, {"run", (tmp / "start.json").string(), "--out",
+                                                    (tmp / "start").string(), "--no-mp4", "--quiet",
+                                                    "--threads", "1", "--backend", "osmesa"});
+    INFO(third.output);
+    REQUIRE(third.exit_code == 0);
+    CHECK(sph::test::read_text(tmp / "moving" / "frames" / "frame_00000.png") ==
+          sph::test::read_text(tmp / "start" / "frames" / "frame_00000.png"));
 }

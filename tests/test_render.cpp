@@ -13,7 +13,9 @@
 #include "support/golden_frames.hpp"
 #include "support/temp_folder.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -83,6 +85,14 @@ TEST_CASE("frames match the golden images, with either backend", "[render]") {
         check_against_golden(
             render_scene(tiny_scene(2, "impostor", {{"render.background", "dark"}}), backend),
             "tiny_2d_dark");
+        // The overlay's text lines: a title and a caption of the user's,
+        // UTF-8 with Greek and superscripts, in the band above the scene.
+        check_against_golden(
+            render_scene(tiny_scene(2, "impostor",
+                                    {{"render.title", "Two blocks — ρ₀ 1000 kg/m³"},
+                                     {"render.caption", "t = {time} s · {steps} steps"}}),
+                         backend),
+            "tiny_2d_titled");
     }
 }
 
@@ -148,6 +158,66 @@ TEST_CASE("colour maps run from their low to their high end", "[render]") {
         }
     }
     CHECK_THROWS_AS(colour_map_table("jet"), std::invalid_argument);
+}
+
+namespace {
+
+// WCAG 2's relative luminance of an sRGB colour (components 0-1) and the
+// contrast ratio of two colours, 1 (none) to 21 (black on white).
+double relative_luminance(double r, double g, double b) {
+    auto linear = [](double c) {
+        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    };
+    return 0.2126 * linear(r) + 0.7152 * linear(g) + 0.0722 * linear(b);
+}
+double contrast(const Rgb8& a, const Rgb8& b) {
+    const double la = relative_luminance(a[0] / 255.0, a[1] / 255.0, a[2] / 255.0);
+    const double lb = relative_luminance(b[0] / 255.0, b[1] / 255.0, b[2] / 255.0);
+    return (std::max(la, lb) + 0.05) / (std::min(la, lb) + 0.05);
+}
+
+} // namespace
+
+TEST_CASE("every colour map's dark end stays visible on the default backdrop", "[render]") {
+    // Every particle below the range, so the whole fluid is drawn in the
+    // map's low end (viridis' purple, turbo's navy); no caption.
+    for (const auto& name : colour_map_names()) {
+        for (const char* background : {"light", "dark"}) {
+            INFO(name << " on " << background);
+            const Image image = render_scene(tiny_scene(2, "impostor",
+                                                        {{"render.colour_map", name},
+                                                         {"render.range", "[5,6]"},
+                                                         {"render.caption", ""},
+                                                         {"render.background", background}}),
+                                             "auto");
+            const Rgb8 low = colour_map_table(name, 256).front();
+            auto pixel = [&](int x, int y) {
+                const std::uint8_t* p = image.pixel(x, y);
+                return Rgb8{p[0], p[1], p[2]};
+            };
+            // The discs show the map's own colour (linear light, sRGB out: a
+            // disc's middle gets about the bar's colour), not a darker one.
+            int shown = 0;
+            for (int y = 0; y < image.height; ++y)
+                for (int x = 0; x < image.width; ++x) {
+                    const Rgb8 c = pixel(x, y);
+                    int d = 0;
+                    for (int k = 0; k < 3; ++k)
+                        d = std::max(d, std::abs(int(c[k]) - int(low[k])));
+                    shown += d <= 24;
+                }
+            CHECK(shown > 200);
+            // Against the backdrop at its darkest (the image's bottom row,
+            // outside the scene), at least 3:1 (WCAG's least for graphics);
+            // the dark backdrop, the look before, loses viridis' purple.
+            const double c = contrast(low, pixel(0, image.height - 1));
+            INFO("contrast " << c);
+            if (std::string(background) == "light")
+                CHECK(c >= 3.0);
+            else if (name == "viridis")
+                CHECK(c < 3.0);
+        }
+    }
 }
 
 TEST_CASE("icospheres are closed unit spheres", "[render]") {

@@ -100,17 +100,21 @@ std::string format_caption(const std::string& pattern, const Snapshot& frame) {
 namespace {
 
 // Text sizes follow the image's height: legible at 180 px, not shouting at
-// 1080 (19 px at 720).
-float body_size(int height) {
-    return std::max(9.f, std::round(0.026f * float(height)));
+// 1080 (19 px at 720). A frame wider than 16:9 (a long tank, 1280x400)
+// sizes its text as the 16:9 frame of its width would: its scene is short
+// and wide, with room above and below, and by its height alone the text
+// was 10 px on a 1280 px wide frame, too small to read beside the tank.
+float body_size(int width, int height) {
+    const float reference = std::max(float(height), float(width) * 9.f / 16.f);
+    return std::max(9.f, std::round(0.026f * reference));
 }
 
 } // namespace
 
 Overlay::Overlay(const RenderSettings& s)
-    : height_(s.height), body_px_(body_size(s.height)), title_px_(std::round(1.3f * body_px_)),
-      label_(s.label), title_(s.title), caption_(s.caption), range_(s.range),
-      ticks_(round_ticks(s.range[0], s.range[1])), backdrop_(s),
+    : height_(s.height), body_px_(body_size(s.width, s.height)),
+      title_px_(std::round(1.3f * body_px_)), label_(s.label), title_(s.title), caption_(s.caption),
+      range_(s.range), ticks_(round_ticks(s.range[0], s.range[1])), backdrop_(s),
       text_colour_(palette(s.background).text), line_colour_(palette(s.background).bar_lines) {
     const std::string font = find_font(s.font, font_warning_);
     std::string face_warning;

@@ -12,6 +12,7 @@
 //   build/sphclip_bench_surface --png FOLDER     # ... and each row's frame
 //   build/sphclip_bench_surface --counts 100000 --backends egl
 //   build/sphclip_bench_surface --tiny           # one small frame (CI)
+//   build/sphclip_bench_surface --light          # ... also with shadows and/or ambient occlusion
 #include "bench_support.hpp"
 #include "output/png_io.hpp"
 #include "render/frame_renderer.hpp"
@@ -74,6 +75,7 @@ int main(int argc, char** argv) {
     const bool& tiny = options.tiny;
     const std::string &csv_path = options.csv, &png_folder = options.png;
     int repeats = 3;
+    bool light = false;
     SurfaceSettings surface;
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
@@ -83,12 +85,14 @@ int main(int argc, char** argv) {
             surface.smoothing = std::stoi(argv[++k]);
         else if (arg == "--voxel" && k + 1 < argc)
             surface.voxel = std::stod(argv[++k]);
+        else if (arg == "--light")
+            light = true;
         else if (arg == "--repeats" && k + 1 < argc)
             repeats = std::max(1, std::stoi(argv[++k]));
         else {
             fmt::print(stderr,
                        "usage: {} [--tiny] [--counts N,N] [--backends egl,osmesa] [--repeats N] "
-                       "[--smoothing N] [--voxel V] [--csv FILE] [--png FOLDER]\n",
+                       "[--smoothing N] [--voxel V] [--light] [--csv FILE] [--png FOLDER]\n",
                        argv[0]);
             return 2;
         }
@@ -128,63 +132,75 @@ int main(int argc, char** argv) {
                          surface.voxel, surface.radius, surface.smoothing));
     }
     emit("backend,particles,width,height,vertices,triangles,reconstruct_ms,colour_ms,"
-         "draw_ms,readback_ms,frame_ms,peak_rss_mib");
+         "draw_ms,readback_ms,frame_ms,peak_rss_mib,shadows,ambient_occlusion");
+    // Light and depth's switches (render.shadows, render.ambient_occlusion):
+    // off, as by default; with --light each on alone and both.
+    std::vector<std::array<bool, 2>> lights{{false, false}};
+    if (light)
+        lights.insert(lights.end(), {{true, false}, {false, true}, {true, true}});
     const std::vector<std::string> backends = bench::split_list(options.backends);
     for (std::size_t n : counts) {
         const double box = 0.1, spacing = box / std::ceil(std::cbrt(double(n)));
         Snapshot frame = make_fluid(n, spacing);
         for (const std::string& backend : backends) {
             auto context = make_gl_context(backend);
-            for (const auto& [width, height] : sizes) {
-                RenderSettings r;
-                r.width = width;
-                r.height = height;
-                r.dimension = 3;
-                r.style = FluidStyle::surface;
-                r.surface = surface;
-                r.spacing = spacing;
-                r.radius = 0.5 * spacing;
-                r.range = {0, 2};
-                r.domain_min = glm::dvec3(0);
-                r.domain_max = glm::dvec3(box);
-                r.camera_target = glm::dvec3(0.05);
-                r.camera_position =
-                    glm::dvec3(0.05) + 0.2 * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
-                FrameRenderer renderer(r);
-                std::vector<double> reconstruct, colour, draw, readback, total;
-                std::size_t vertices = 0, triangles = 0;
-                Image image;
-                for (int k = 0; k < repeats; ++k) {
-                    // A new frame each time: the renderer reconstructs a
-                    // frame's surface once (FrameSurface), and would reuse it.
-                    frame.frame = std::uint64_t(k);
-                    // The split, from the reconstruction alone...
-                    const Surface s = reconstruct_surface(frame, r.field, spacing, r.surface);
-                    reconstruct.push_back(1e3 * s.reconstruction_seconds);
-                    colour.push_back(1e3 * s.colour_seconds);
-                    vertices = s.mesh.vertices();
-                    triangles = s.mesh.triangles.size() / 3;
-                    // ... and the whole frame as a run draws it.
-                    const auto start = Clock::now();
-                    image = renderer.render(frame);
-                    total.push_back(1e3 *
-                                    std::chrono::duration<double>(Clock::now() - start).count());
-                    const FrameTimings& t = renderer.last_timings();
-                    draw.push_back(1e3 * (t.draw_seconds - t.surface_seconds));
-                    readback.push_back(1e3 * t.readback_seconds);
+            for (const auto& [width, height] : sizes)
+                for (const auto& [shadows, occlusion] : lights) {
+                    RenderSettings r;
+                    r.shadows = shadows;
+                    r.ambient_occlusion = occlusion;
+                    r.width = width;
+                    r.height = height;
+                    r.dimension = 3;
+                    r.style = FluidStyle::surface;
+                    r.surface = surface;
+                    r.spacing = spacing;
+                    r.radius = 0.5 * spacing;
+                    r.range = {0, 2};
+                    r.domain_min = glm::dvec3(0);
+                    r.domain_max = glm::dvec3(box);
+                    r.camera_target = glm::dvec3(0.05);
+                    r.camera_position =
+                        glm::dvec3(0.05) + 0.2 * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
+                    FrameRenderer renderer(r);
+                    std::vector<double> reconstruct, colour, draw, readback, total;
+                    std::size_t vertices = 0, triangles = 0;
+                    Image image;
+                    for (int k = 0; k < repeats; ++k) {
+                        // A new frame each time: the renderer reconstructs a
+                        // frame's surface once (FrameSurface), and would reuse it.
+                        frame.frame = std::uint64_t(k);
+                        // The split, from the reconstruction alone...
+                        const Surface s = reconstruct_surface(frame, r.field, spacing, r.surface);
+                        reconstruct.push_back(1e3 * s.reconstruction_seconds);
+                        colour.push_back(1e3 * s.colour_seconds);
+                        vertices = s.mesh.vertices();
+                        triangles = s.mesh.triangles.size() / 3;
+                        // ... and the whole frame as a run draws it.
+                        const auto start = Clock::now();
+                        image = renderer.render(frame);
+                        total.push_back(
+                            1e3 * std::chrono::duration<double>(Clock::now() - start).count());
+                        const FrameTimings& t = renderer.last_timings();
+                        draw.push_back(1e3 * (t.draw_seconds - t.surface_seconds));
+                        readback.push_back(1e3 * t.readback_seconds);
+                    }
+                    emit(fmt::format(
+                        "{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.0f},{},{}",
+                        backend, n, width, height, vertices, triangles, bench::median(reconstruct),
+                        bench::median(colour), bench::median(draw), bench::median(readback),
+                        bench::median(total), bench::peak_rss_mib(), shadows ? "on" : "off",
+                        occlusion ? "on" : "off"));
+                    if (!png_folder.empty())
+                        write_png(std::filesystem::path(png_folder) /
+                                      fmt::format("surface_{}_{}_{}x{}{}{}.png", backend, n, width,
+                                                  height, shadows ? "_shadows" : "",
+                                                  occlusion ? "_ao" : ""),
+                                  image);
                 }
-                emit(fmt::format("{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.0f}",
-                                 backend, n, width, height, vertices, triangles,
-                                 bench::median(reconstruct), bench::median(colour),
-                                 bench::median(draw), bench::median(readback), bench::median(total),
-                                 bench::peak_rss_mib()));
-                if (!png_folder.empty())
-                    write_png(std::filesystem::path(png_folder) /
-                                  fmt::format("surface_{}_{}_{}x{}.png", backend, n, width, height),
-                              image);
-            }
         }
     }
+    note(fmt::format("load average (1, 5, 15 min) at the end: {}", bench::load_average()));
     if (csv)
         std::fclose(csv);
     return 0;

@@ -76,28 +76,15 @@ std::array<double, 2> default_colour_range(const Scene& scene, ColourField field
     return {rho0 * (1 - compression), rho0 * (1 + compression)};
 }
 
-RenderSettings make_render_settings(const Scene& scene) {
-    RenderSettings r;
-    r.width = scene.render.size[0];
-    r.height = scene.render.size[1];
-    r.dimension = scene.dimension;
+namespace {
+
+glm::dvec3 to_dvec3(const Vec3& v) {
+    return glm::dvec3(v[0], v[1], v[2]);
+}
+
+// The colour field, its map, label and range (an explicit range as given).
+void set_colour(const Scene& scene, RenderSettings& r) {
     r.field = scene.render.colour;
-    r.title = scene.render.title.value_or("");
-    r.caption = scene.render.caption.value_or(r.caption);
-    r.font = scene.render.font.value_or("");
-    r.spheres = scene.render.spheres;
-    r.radius = 0.5 * scene.fluid.spacing;
-    r.style = scene.render.style;
-    r.spacing = scene.fluid.spacing;
-    r.surface = {.voxel = scene.render.surface.voxel,
-                 .radius = scene.render.surface.radius,
-                 .smoothing = scene.render.surface.smoothing};
-    for (int a = 0; a < scene.dimension; ++a) {
-        r.domain_min[a] = scene.domain.min[a];
-        r.domain_max[a] = scene.domain.max[a];
-    }
-    r.obstacles = scene.effects.obstacles;
-    r.paddles = make_paddles<3>(scene);
     switch (r.field) {
     case ColourField::velocity:
         r.label = "speed (m/s)";
@@ -119,33 +106,11 @@ RenderSettings make_render_settings(const Scene& scene) {
         r.range = *scene.render.range;
         r.range_key = "render.range";
     }
+}
 
-    const auto& camera = scene.render.camera;
-    auto vec = [](const Vec3& v) {
-        return glm::dvec3(v[0], v[1], v[2]);
-    };
-    r.fov = camera.fov;
-    r.camera_fit = camera.fit;
-    r.fps = scene.fps;
-    r.duration = scene.duration;
-    r.frame_to_domain = scene.dimension == 3;
-    r.scene_aspect = scene.dimension == 3 ? camera.aspect.value_or(0) : 0;
-    r.camera_target = 0.5 * (r.domain_min + r.domain_max);
-    if (camera.up)
-        r.camera_up = vec(*camera.up);
-    if (camera.target) {
-        r.camera_target = vec(*camera.target);
-        r.target_given = true;
-    }
-    if (camera.centre) {
-        r.camera_target = glm::dvec3((*camera.centre)[0], (*camera.centre)[1], 0);
-        r.centre_given = true;
-    }
-    r.view_height = camera.height.value_or(0);
-    if (camera.position)
-        r.camera_position = vec(*camera.position);
-    r.camera_fixed = camera.position.has_value() || (camera.centre && camera.height);
-    // Where the fluid starts: its blocks, and the emitters' inlets.
+// Where the fluid starts: its blocks, and the emitters' inlets (what
+// render.camera.fit = fluid frames at the first frame).
+void set_fluid_bounds(const Scene& scene, RenderSettings& r) {
     r.fluid_min = glm::dvec3(1e300);
     r.fluid_max = glm::dvec3(-1e300);
     auto take = [&](const Vec3& lo, const Vec3& hi) {
@@ -160,14 +125,40 @@ RenderSettings make_render_settings(const Scene& scene) {
         take(e.min, e.max);
     for (int a = scene.dimension; a < 3; ++a)
         r.fluid_min[a] = r.fluid_max[a] = 0;
+}
+
+// render.camera: a fixed camera, a fit, a keyframed path or an orbit.
+void set_camera(const Scene& scene, RenderSettings& r) {
+    const auto& camera = scene.render.camera;
+    r.fov = camera.fov;
+    r.camera_fit = camera.fit;
+    r.fps = scene.fps;
+    r.duration = scene.duration;
+    r.frame_to_domain = scene.dimension == 3;
+    r.scene_aspect = scene.dimension == 3 ? camera.aspect.value_or(0) : 0;
+    r.camera_target = 0.5 * (r.domain_min + r.domain_max);
+    if (camera.up)
+        r.camera_up = to_dvec3(*camera.up);
+    if (camera.target) {
+        r.camera_target = to_dvec3(*camera.target);
+        r.target_given = true;
+    }
+    if (camera.centre) {
+        r.camera_target = glm::dvec3((*camera.centre)[0], (*camera.centre)[1], 0);
+        r.centre_given = true;
+    }
+    r.view_height = camera.height.value_or(0);
+    if (camera.position)
+        r.camera_position = to_dvec3(*camera.position);
+    r.camera_fixed = camera.position.has_value() || (camera.centre && camera.height);
     for (const auto& k : camera.path) {
         RenderSettings::CameraKeyframe key;
         key.time = k.time;
         if (scene.dimension == 3) {
-            key.position = vec(*k.position);
-            key.target = vec(*k.target);
+            key.position = to_dvec3(*k.position);
+            key.target = to_dvec3(*k.target);
             if (k.up)
-                key.up = vec(*k.up);
+                key.up = to_dvec3(*k.up);
             key.fov = k.fov.value_or(camera.fov);
         } else {
             key.target = glm::dvec3((*k.centre)[0], (*k.centre)[1], 0);
@@ -183,6 +174,10 @@ RenderSettings make_render_settings(const Scene& scene) {
                                   camera.orbit->start_deg, camera.orbit->distance.value_or(0)};
         r.camera_fixed = false;
     }
+}
+
+// Light and depth, and which way is up for the floor.
+void set_light(const Scene& scene, RenderSettings& r) {
     r.cull_buried = scene.dimension == 3 && scene.render.cull_buried;
     r.shadows = scene.render.shadows;
     r.ambient_occlusion = scene.render.ambient_occlusion;
@@ -202,6 +197,35 @@ RenderSettings make_render_settings(const Scene& scene) {
             r.up[axis] = g[axis] < 0 ? 1 : -1;
         }
     }
+}
+
+} // namespace
+
+RenderSettings make_render_settings(const Scene& scene) {
+    RenderSettings r;
+    r.width = scene.render.size[0];
+    r.height = scene.render.size[1];
+    r.dimension = scene.dimension;
+    r.title = scene.render.title.value_or("");
+    r.caption = scene.render.caption.value_or(r.caption);
+    r.font = scene.render.font.value_or("");
+    r.spheres = scene.render.spheres;
+    r.radius = 0.5 * scene.fluid.spacing;
+    r.style = scene.render.style;
+    r.spacing = scene.fluid.spacing;
+    r.surface = {.voxel = scene.render.surface.voxel,
+                 .radius = scene.render.surface.radius,
+                 .smoothing = scene.render.surface.smoothing};
+    for (int a = 0; a < scene.dimension; ++a) {
+        r.domain_min[a] = scene.domain.min[a];
+        r.domain_max[a] = scene.domain.max[a];
+    }
+    r.obstacles = scene.effects.obstacles;
+    r.paddles = make_paddles<3>(scene);
+    set_colour(scene, r);
+    set_camera(scene, r);
+    set_fluid_bounds(scene, r);
+    set_light(scene, r);
     return r;
 }
 

@@ -44,15 +44,11 @@ void blur(NodeGrid& g) {
     }
 }
 
-} // namespace
-
-SurfaceMesh reconstruct_region_2d(const Snapshot& frame, const std::vector<float>& scalars,
-                                  double spacing, const SurfaceSettings& settings) {
-    SurfaceMesh mesh;
-    mesh.dimension = 2;
+// The particles' kernel sums on a grid of nodes, a border of empty nodes
+// all round; weight and weight x scalar per node.
+NodeGrid splat(const Snapshot& frame, const std::vector<float>& scalars, double spacing,
+               const SurfaceSettings& settings) {
     const std::size_t n = frame.size();
-    if (n == 0)
-        return mesh;
     // Kernel support R: twice the radius, so neighbours overlap and the sum
     // is smooth between them.
     const double support = 2 * settings.radius * spacing;
@@ -92,14 +88,12 @@ SurfaceMesh reconstruct_region_2d(const Snapshot& frame, const std::vector<float
                 g.colour[g.node(i, j)] += w * scalars[p];
             }
     }
-    for (int pass = 0; pass < settings.smoothing; ++pass)
-        blur(g);
-    // The sum deep inside a lattice of spacing s: the kernel's integral,
-    // pi R^2 / 4, over the area s^2 each particle stands for. The outline is
-    // where half of that is reached: half a spacing beyond the outermost
-    // particles, where the drawn discs' edge would be.
-    const float iso = float(0.5 * (std::numbers::pi * r2 / 4) / (spacing * spacing));
+    return g;
+}
 
+// Marching squares over the grid: the cells' inside parts as triangles, and
+// the outline where the sum crosses iso, into mesh.
+void march(const NodeGrid& g, float iso, SurfaceMesh& mesh) {
     // Vertices made once and shared by the cells that meet there: at nodes
     // inside, and where an edge crosses the outline (per node, the edge to
     // +x and the edge to +y).
@@ -178,6 +172,26 @@ SurfaceMesh reconstruct_region_2d(const Snapshot& frame, const std::vector<float
                                         {std::uint32_t(polygon[k]), std::uint32_t(polygon[next])});
             }
         }
+}
+
+} // namespace
+
+SurfaceMesh reconstruct_region_2d(const Snapshot& frame, const std::vector<float>& scalars,
+                                  double spacing, const SurfaceSettings& settings) {
+    SurfaceMesh mesh;
+    mesh.dimension = 2;
+    if (frame.size() == 0)
+        return mesh;
+    NodeGrid g = splat(frame, scalars, spacing, settings);
+    for (int pass = 0; pass < settings.smoothing; ++pass)
+        blur(g);
+    // The sum deep inside a lattice of spacing s: the kernel's integral,
+    // pi R^2 / 4, over the area s^2 each particle stands for. The outline is
+    // where half of that is reached: half a spacing beyond the outermost
+    // particles, where the drawn discs' edge would be.
+    const double support = 2 * settings.radius * spacing, r2 = support * support;
+    const float iso = float(0.5 * (std::numbers::pi * r2 / 4) / (spacing * spacing));
+    march(g, iso, mesh);
     return mesh;
 }
 

@@ -80,14 +80,18 @@ TEST_CASE("frames: advance_to stops at the first step at or past the time", "[si
 
 TEST_CASE("one thread and two threads give the same bits", "[simulation]") {
     // wcsph runs its single-precision cell passes by default; "wcsph double"
-    // its double passes over neighbour lists.
-    for (const char* solver : {"seed", "wcsph", "dfsph", "wcsph double"}) {
+    // its double passes over neighbour lists; "wcsph carried" its carried
+    // density (delta-SPH) and walls' pressure extrapolated from the fluid.
+    for (const char* solver : {"seed", "wcsph", "dfsph", "wcsph double", "wcsph carried"}) {
         INFO(solver);
         const bool wcsph_double = std::string(solver) == "wcsph double";
+        const bool carried = std::string(solver) == "wcsph carried";
         const Scene scene =
             small_dam_break({{"fluid.spacing", "0.0025"},
-                             {"solver.name", wcsph_double ? "wcsph" : solver},
-                             {"solver.precision", wcsph_double ? "double" : "auto"}});
+                             {"solver.name", wcsph_double || carried ? "wcsph" : solver},
+                             {"solver.precision", wcsph_double ? "double" : "auto"},
+                             {"solver.density_diffusion", carried ? "0.1" : "0"},
+                             {"solver.wall_pressure", carried ? "extrapolated" : "mirror"}});
         auto run = [&](int threads) {
             omp_set_num_threads(threads);
             auto sim = make_simulation<2>(scene);

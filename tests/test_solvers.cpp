@@ -4,12 +4,14 @@
 #include "scene/scene.hpp"
 #include "scene/scene_setup.hpp"
 #include "sph/boundaries/boundary_set.hpp"
+#include "sph/density_diffusion.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/neighbours/all_pairs.hpp"
 #include "sph/solvers/dfsph.hpp"
 #include "sph/solvers/explicit_solver.hpp"
 #include "sph/solvers/wcsph.hpp"
 #include "sph/time_step.hpp"
+#include "sph/wall_pressure.hpp"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -145,6 +147,133 @@ TEST_CASE("the adaptive step follows the CFL, viscous and force conditions", "[s
     settings.dt_max = 1e-5;
     settings.dt_min = 1e-9;
     CHECK(stable_time_step(settings, scales, {.carries_sound = false}, {0, 0}) == 1e-5);
+}
+
+TEST_CASE("the adaptive step names the condition that set it", "[solvers]") {
+    TimeStepSettings settings;
+    settings.cfl = 0.5;
+    settings.dt_min = 1e-9;
+    settings.dt_max = 1;
+    TimeStepScales scales{
+        .h = 0.02, .spacing = 0.01, .sound_speed = 10, .rest_density = 1000, .viscosity = 0};
+    const auto limit = [&](TimeStepModel model, ExtremeRates rates) {
+        TimeStepLimit which = TimeStepLimit::count;
+        stable_time_step(settings, scales, model, rates, &which);
+        return which;
+    };
+    CHECK(limit({.carries_sound = true}, {2, 0}) == TimeStepLimit::sound);
+    CHECK(limit({.carries_sound = false}, {2, 0}) == TimeStepLimit::particles);
+    CHECK(limit({.carries_sound = false}, {0, 0}) == TimeStepLimit::dt_max);
+    // 0.25 sqrt(0.02 / 1e4) = 3.5e-4 s, under the particles' 2.5e-3 s.
+    CHECK(limit({.carries_sound = false}, {2, 1e4}) == TimeStepLimit::forces);
+    scales.viscosity = 1000; // 1.25e-5 s
+    CHECK(limit({.carries_sound = false}, {2, 1e4}) == TimeStepLimit::viscosity);
+    settings.dt_min = 1e-3;
+    CHECK(limit({.carries_sound = true}, {1e6, 0}) == TimeStepLimit::dt_min);
+}
+
+TEST_CASE("delta-SPH's renormalised density gradient is exact for a linear density", "[solvers]") {
+    // A 2D block of 12 x 8 particles with a free surface all round: the
+    // gradient Antuono et al. 2010 subtract must be the field's own even
+    // where half the neighbourhood is missing, or the diffusion would wear
+    // down a hydrostatic density from the surface.
+    Params<2> p;
+    p.rest_density = 1000;
+    p.bulk_modulus = 2e5;
+    p.spacing = 0.01;
+    p.h = 0.02;
+    p.mass = p.rest_density * p.spacing * p.spacing;
+    p.density_diffusion = 0.1;
+    State<2> state;
+    for (int i = 0; i < 12; ++i)
+        for (int j = 0; j < 8; ++j) {
+            state.position.push_back({(i + 0.5) * p.spacing, (j + 0.5) * p.spacing});
+            state.id.push_back(std::uint32_t(state.id.size()));
+        }
+    const std::size_t n = state.position.size();
+    state.velocity.assign(n, Vec<2>(0));
+    state.acceleration.assign(n, Vec<2>(0));
+    state.pressure.assign(n, 0);
+    const Vec<2> slope(30, -70); // kg/m^4, along neither axis
+    for (const auto& x : state.position)
+        state.density.push_back(p.rest_density + glm::dot(slope, x));
+    AllPairs<2> search;
+    NeighbourList neighbours, no_walls;
+    search.find(state.position, p.h, neighbours);
+    ContinuityScratch<2> scratch;
+    std::vector<Real> rate;
+    with_kernel<2>(KernelKind::cubic_spline, p.h, [&](const auto& kernel) {
+        const BoundaryParticles<2>* no_boundary = nullptr;
+        compute_density_rate(p, kernel, neighbours, no_boundary, no_walls, state, scratch, rate);
+    });
+    for (std::size_t i = 0; i < n; ++i) {
+        INFO("particle at " << state.position[i].x << ", " << state.position[i].y);
+        CHECK(scratch.density_gradient[i].x == Approx(slope.x).epsilon(1e-9));
+        CHECK(scratch.density_gradient[i].y == Approx(slope.y).epsilon(1e-9));
+    }
+}
+
+TEST_CASE("extrapolated walls take the hydrostatic pressure of their own depth", "[solvers]") {
+    // Adami et al. 2012, eq. 27: with the fluid hydrostatic, p_f + rho g . (x_b
+    // - x_f) is the same for every fluid particle f near a wall particle b,
+    // so its Shepard average is rho0 |g| (surface - y_b), exactly.
+    auto sim = make_simulation<2>(
+        tank(2, "wcsph", "cubic_spline",
+             {{"solver.wall_pressure", "extrapolated"}, {"effects.gravity", "[0,-9.81]"}}));
+    REQUIRE(sim.boundary() != nullptr);
+    REQUIRE(sim.params().wall_pressure == WallPressure::extrapolated);
+    State<2> state = sim.state();
+    const Real rho0 = sim.params().rest_density, surface = 0.05;
+    for (std::size_t i = 0; i < state.size(); ++i) {
+        state.density[i] = rho0;
+        state.pressure[i] = rho0 * 9.81 * (surface - state.position[i].y);
+    }
+    const BoundaryParticles<2>& walls = *sim.boundary();
+    NeighbourList wall_pairs;
+    walls.find_neighbours(state.position, wall_pairs);
+    WallPressureScratch scratch;
+    with_kernel<2>(KernelKind::cubic_spline, sim.params().h, [&](const auto& kernel) {
+        extrapolate_wall_pressure(sim.params(), kernel, walls, wall_pairs, state, scratch);
+    });
+    const Real B = sim.params().bulk_modulus / 7;
+    int checked = 0;
+    for (std::size_t b = 0; b < walls.size(); ++b) {
+        const Vec<2> x = walls.positions()[b];
+        // The floor's particles that reach a fluid particle.
+        if (x.y >= 0 || scratch.start[b + 1] == scratch.start[b])
+            continue;
+        const Real p = rho0 * 9.81 * (surface - x.y);
+        const Real rho = rho0 * std::pow(1 + p / B, 1.0 / 7);
+        INFO("wall particle at " << x.x << ", " << x.y);
+        CHECK(scratch.pressure_term[b] == Approx(p / (rho * rho)).epsilon(1e-9));
+        ++checked;
+    }
+    CHECK(checked > 5);
+}
+
+TEST_CASE("wcsph with delta-SPH keeps a tank at rest hydrostatic", "[solvers]") {
+    // The carried density has no free-surface deficit: the top layer's
+    // pressure is not clamped to zero as a summed density's is.
+    auto sim = make_simulation<2>(tank(2, "wcsph", "cubic_spline",
+                                       {{"solver.density_diffusion", "0.1"},
+                                        {"solver.wall_pressure", "hydrostatic"},
+                                        {"material.bulk_modulus", "2e5"},
+                                        {"effects.gravity", "[0,-9.81]"}}));
+    sim.advance_to(0.5);
+    Real speed = 0;
+    for (const auto& v : sim.state().velocity)
+        speed = std::max(speed, glm::length(v));
+    CHECK(speed < 0.01);
+    // The bottom row (y = 0.005 m) carries 0.045 m of water.
+    Real bottom = 0;
+    int count = 0;
+    for (std::size_t i = 0; i < sim.state().size(); ++i)
+        if (sim.state().position[i].y < 0.01) {
+            bottom += sim.state().pressure[i];
+            ++count;
+        }
+    REQUIRE(count > 0);
+    CHECK(bottom / count == Approx(1000 * 9.81 * 0.045).epsilon(0.05));
 }
 
 TEST_CASE("adaptive steps land exactly on the frame times", "[solvers]") {

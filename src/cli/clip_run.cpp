@@ -654,6 +654,10 @@ class ClipRun {
         std::vector<StageRow> stages =
             stage_rows(sim_.stage_times(), after, wall_seconds, sim_.particle_steps(), overlapped);
         record_.document["stages"] = stages_json(stages);
+        json limits = json::object();
+        for (std::size_t k = 0; k < time_step_limit_names.size(); ++k)
+            limits[std::string(time_step_limit_names[k])] = sim_.time_step_limits()[k];
+        record_.document["time_step_limits"] = limits;
         record_.document["timings"] = {{"total",
                                         {{"simulate_s", simulate_total},
                                          {"render_s", total.render_s},

@@ -329,6 +329,16 @@ void check_solver(const FieldReader& r, const Scene& s) {
         r.fail("solver.integrator",
                "dfsph integrates with its own scheme (symplectic Euler between its two pressure "
                "solves); verlet is for the seed and wcsph solvers");
+    if (s.solver.wall_pressure == WallPressure::extrapolated && s.solver.name != SolverKind::wcsph)
+        r.fail("solver.wall_pressure",
+               fmt::format("extrapolated is wcsph's (the {} solver's walls take the fluid "
+                           "particle's own pressure); use mirror or hydrostatic",
+                           solver.name));
+    if (s.solver.density_diffusion > 0 && s.solver.name == SolverKind::wcsph &&
+        s.solver.integrator == Integrator::verlet)
+        r.fail("solver.density_diffusion",
+               "wcsph's carried density advances with symplectic Euler (after the kick, as the "
+               "positions); use solver.integrator symplectic_euler, or 0 to sum the density");
     if (s.solver.precision == Precision::single) {
         const std::string obstacle = single_precision_obstacle(s, derive_kernel(s));
         if (!obstacle.empty())
@@ -761,6 +771,10 @@ std::string single_precision_obstacle(const Scene& s, KernelKind kernel) {
         return fmt::format("the single-precision passes are wcsph's; the {} solver computes in "
                            "double",
                            solver_capabilities(s.solver.name).name);
+    if (s.solver.density_diffusion > 0)
+        return "solver.density_diffusion carries wcsph's density in the double passes";
+    if (s.solver.wall_pressure == WallPressure::extrapolated)
+        return "solver.wall_pressure extrapolated is computed in the double passes";
     if (!smooth_at_origin(kernel))
         return "the seed kernel's spiky gradient needs the double passes' rule for coincident "
                "particles; use solver.kernel cubic_spline or wendland_c2";

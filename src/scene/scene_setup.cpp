@@ -71,9 +71,15 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                   !scene.watchdog.max_speed.has_value()};
     p.reorder_every = scene.solver.reorder_every;
     p.precision = derived.precision;
-    if (scene.solver.wall_pressure == WallPressure::hydrostatic && scene.effects.gravity &&
-        derived.walls == WallModel::particles)
+    // wcsph's alone; the other solvers sum their density (as they ignore
+    // solver.artificial_viscosity), so one tank scene serves every solver.
+    if (scene.solver.name == SolverKind::wcsph)
+        p.density_diffusion = scene.solver.density_diffusion;
+    if (scene.solver.wall_pressure != WallPressure::mirror && scene.effects.gravity &&
+        derived.walls == WallModel::particles) {
         p.wall_gravity = to_vec<D>(scene.effects.gravity->acceleration);
+        p.wall_pressure = scene.solver.wall_pressure;
+    }
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     p.obstacles = make_obstacles<D>(scene);
     p.paddles = make_paddles<D>(scene);

@@ -20,8 +20,10 @@ enum class Integrator { symplectic_euler, verlet };
 // weight of the fluid between them, p_b = p_i + rho_i max(g . (x_b - x_i), 0)
 // (Adami et al. 2012, eq. 27's hydrostatic term, pair by pair; only walls
 // below the particle add: a wall above takes the mirrored pressure, which
-// never pulls the fluid onto it).
-enum class WallPressure { mirror, hydrostatic };
+// never pulls the fluid onto it); extrapolated (wcsph), Adami et al. 2012's
+// whole eq. 27: a Shepard average of the fluid's pressures around the wall
+// particle plus the weight between (sph/wall_pressure.hpp).
+enum class WallPressure { mirror, hydrostatic, extrapolated };
 
 // The solvers (solver.name), in the order of solver_names().
 enum class SolverKind { seed, wcsph, dfsph };
@@ -90,6 +92,12 @@ struct Params {
     // Gravity that the walls' pressure adds across the fluid-wall distance
     // (WallPressure::hydrostatic); zero: the mirrored pressure.
     Vec<D> wall_gravity{0}; // m/s^2
+    // mirror unless the walls are particles and gravity is on.
+    WallPressure wall_pressure = WallPressure::mirror;
+    // wcsph: delta of delta-SPH's density diffusion (sph/density_diffusion.hpp);
+    // above 0 the density is carried by the continuity equation, at 0 it is
+    // summed (solver.density_diffusion).
+    Real density_diffusion = 0;
 
     Real sound_speed() const { return std::sqrt(bulk_modulus / rest_density); }
 };

@@ -9,7 +9,9 @@
 // Our walls are several full layers of fluid-like particles, so they must
 // hold the fluid up as fluid below would; Akinci et al. 2012's single term
 // p_i / rho_i^2 (eq. 10, for one layer) would leave the bottom layer at twice
-// the hydrostatic pressure.
+// the hydrostatic pressure. With solver.wall_pressure extrapolated the wall
+// particle has a pressure and density of its own (sph/wall_pressure.hpp):
+//   a_i -= sum_b rho0 V_b (p_i / rho_i^2 + p_b / rho_b^2) grad W_ib
 // The viscosities the scene names join the same pass, which shares among
 // them the gathers of the neighbour's position, velocity and density, r and
 // the kernel's derivative (one pass over the pairs instead of up to three):
@@ -63,23 +65,29 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
                                    const BoundaryParticles<D>* boundary,
                                    const NeighbourList& boundary_neighbours,
                                    const PairViscosities& viscosities,
-                                   std::vector<Real>& pressure_term, State<D>& state) {
+                                   std::vector<Real>& pressure_term, State<D>& state,
+                                   const Real* wall_pressure_term = nullptr) {
     const std::size_t n = state.size();
     resize_with_headroom(pressure_term, n);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
         pressure_term[i] = state.pressure[i] / (state.density[i] * state.density[i]);
     const bool hydrostatic_walls = params.wall_gravity != Vec<D>(0);
+    // solver.wall_pressure extrapolated: p_b / rho_b^2 per wall particle
+    // (sph/wall_pressure.hpp), which replaces the mirrored p_i / rho_i^2.
+    const bool extrapolated_walls = wall_pressure_term != nullptr;
     // Compiled for each set of viscosities (PairViscosities::dispatch) and
     // wall pressure: a test in the wall loop keeps it from vectorising, which
     // also changes its sum's order (and so every bit of a 3D run).
     // params and kernel by init-capture: clang 14 rejects the inner lambdas'
     // uses of the function's own parameters inside the OpenMP loop.
-    const auto accelerate = [&, &params = params, &kernel = kernel](
-                                auto artificial_flag, auto laminar_flag, auto hydrostatic_flag) {
+    const auto accelerate = [&, &params = params,
+                             &kernel = kernel](auto artificial_flag, auto laminar_flag,
+                                               auto hydrostatic_flag, auto extrapolated_flag) {
         constexpr bool artificial = decltype(artificial_flag)::value;
         constexpr bool laminar = decltype(laminar_flag)::value;
         constexpr bool hydrostatic = decltype(hydrostatic_flag)::value;
+        constexpr bool extrapolated = decltype(extrapolated_flag)::value;
         const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
         const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
 #pragma omp parallel for schedule(dynamic, 256)
@@ -112,8 +120,10 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
                     const Real r = std::sqrt(r2);
                     const Vec<D> v_ib = state.velocity[i] - wall_velocity[b];
                     Real factor = 2 * pi_over_rho2;
+                    if constexpr (extrapolated)
+                        factor = pi_over_rho2 + wall_pressure_term[b];
                     // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise.
-                    if constexpr (hydrostatic)
+                    else if constexpr (hydrostatic)
                         factor += std::max(-glm::dot(params.wall_gravity, x_ib), Real(0)) /
                                   state.density[i];
                     if constexpr (artificial)
@@ -129,10 +139,12 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
         }
     };
     viscosities.dispatch([&](auto artificial, auto laminar) {
-        if (hydrostatic_walls)
-            accelerate(artificial, laminar, std::true_type{});
+        if (extrapolated_walls)
+            accelerate(artificial, laminar, std::false_type{}, std::true_type{});
+        else if (hydrostatic_walls)
+            accelerate(artificial, laminar, std::true_type{}, std::false_type{});
         else
-            accelerate(artificial, laminar, std::false_type{});
+            accelerate(artificial, laminar, std::false_type{}, std::false_type{});
     });
 }
 

@@ -72,8 +72,11 @@ Real Simulation<D>::next_dt() const {
         rates.max_speed = std::max(rates.max_speed, source->speed());
     for (const auto& boundary : boundaries_)
         rates.max_speed = std::max(rates.max_speed, boundary->speed());
-    return stable_time_step(params_, solver_->time_step_model(), rates,
-                            diffusion_viscosity(effects_));
+    TimeStepLimit limit = TimeStepLimit::dt_max;
+    const Real dt = stable_time_step(params_, solver_->time_step_model(), rates,
+                                     diffusion_viscosity(effects_), &limit);
+    ++time_step_limits_[std::size_t(limit)];
+    return dt;
 }
 
 template <int D>

@@ -11,8 +11,10 @@
 #include "sph/solvers/solver.hpp"
 #include "sph/sources/source.hpp"
 #include "sph/step_counters.hpp"
+#include "sph/time_step.hpp"
 #include "sph/watchdog.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -77,6 +79,12 @@ class Simulation {
     const StageTimes& stage_times() const { return stages_; }
     std::uint64_t particle_steps() const { return particle_steps_; }
     std::uint64_t steps() const { return steps_; }
+    // How many adaptive steps each stability condition set (time_step.hpp);
+    // a watchdog's halving or a step cut to land on a frame counts as the
+    // condition that chose the step it came from.
+    const std::array<std::uint64_t, std::size_t(TimeStepLimit::count)>& time_step_limits() const {
+        return time_step_limits_;
+    }
 
   private:
     StepContext<D> context() {
@@ -128,6 +136,7 @@ class Simulation {
     std::uint64_t fixed_steps_ = 0;
     std::uint64_t particle_steps_ = 0;
     FrameFields output_fields_;
+    mutable std::array<std::uint64_t, std::size_t(TimeStepLimit::count)> time_step_limits_{};
     mutable StageTimes stages_; // next_dt() const is timed too // fixed dt: time is this count
                                 // times dt, free of rounding
 };

@@ -31,6 +31,8 @@ enum class Stage : std::uint8_t {
     boundary_neighbours, // each fluid particle's boundary particles
     density,
     pressure,         // explicit solvers: the equation of state, the pressure force
+    density_rate,     // wcsph's carried density: its rate and delta-SPH's diffusion
+    wall_pressure,    // wcsph: the walls' pressure extrapolated from the fluid
     divergence_solve, // dfsph
     pressure_solve,   // dfsph
     integration,
@@ -59,6 +61,8 @@ inline constexpr std::array<std::string_view, std::size_t(Stage::count)> stage_n
     "boundary neighbours",
     "density",
     "pressure",
+    "density rate",
+    "wall pressure",
     "divergence solve",
     "pressure solve",
     "integration",

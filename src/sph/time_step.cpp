@@ -20,22 +20,36 @@ ExtremeRates measure_rates(const State<D>& state) {
 }
 
 Real stable_time_step(const TimeStepSettings& ts, const TimeStepScales& scales, TimeStepModel model,
-                      ExtremeRates rates) {
+                      ExtremeRates rates, TimeStepLimit* limit) {
     Real dt = ts.dt_max;
+    TimeStepLimit bound = TimeStepLimit::dt_max;
+    const auto bind = [&](Real candidate, TimeStepLimit which) {
+        if (candidate < dt) {
+            dt = candidate;
+            bound = which;
+        }
+    };
     if (model.carries_sound) {
         const Real compression = std::max(rates.max_density / scales.rest_density, Real(1));
         const Real c = scales.sound_speed * std::pow(compression, model.sound_speed_exponent);
-        dt = std::min(dt, ts.cfl * scales.h / (c + rates.max_speed));
+        bind(ts.cfl * scales.h / (c + rates.max_speed), TimeStepLimit::sound);
     } else if (rates.max_speed > 0)
-        dt = std::min(dt, ts.cfl * scales.spacing / rates.max_speed);
+        bind(ts.cfl * scales.spacing / rates.max_speed, TimeStepLimit::particles);
     if (scales.viscosity > 0) {
         // Morris et al.'s h is the smoothing length, half our support radius.
         const Real smoothing = scales.h / 2;
-        dt = std::min(dt, 0.125 * smoothing * smoothing * scales.rest_density / scales.viscosity);
+        bind(0.125 * smoothing * smoothing * scales.rest_density / scales.viscosity,
+             TimeStepLimit::viscosity);
     }
     if (rates.max_acceleration > 0)
-        dt = std::min(dt, 0.25 * std::sqrt(scales.h / rates.max_acceleration));
-    return std::max(dt, ts.dt_min);
+        bind(0.25 * std::sqrt(scales.h / rates.max_acceleration), TimeStepLimit::forces);
+    if (dt < ts.dt_min) {
+        dt = ts.dt_min;
+        bound = TimeStepLimit::dt_min;
+    }
+    if (limit)
+        *limit = bound;
+    return dt;
 }
 
 template ExtremeRates measure_rates<2>(const State<2>&);

@@ -15,6 +15,10 @@
 #include "sph/params.hpp"
 #include "sph/state.hpp"
 
+#include <array>
+#include <cstdint>
+#include <string_view>
+
 namespace sph {
 
 // What a solver tells the rule about itself.
@@ -45,19 +49,35 @@ struct TimeStepScales {
     Real viscosity = 0;    // Pa.s
 };
 
-// The step the conditions above allow for the given rates, within [dt_min, dt_max].
+// Which condition set a step (run.json "time_step_limits"): the one whose
+// bound was the smallest, or the settings' ends.
+enum class TimeStepLimit : std::uint8_t {
+    dt_max,    // solver.dt_max: nothing moves fast enough to bind
+    sound,     // cfl h / (c + v_max), weakly compressible solvers
+    particles, // cfl spacing / v_max, incompressible solvers
+    viscosity, // 0.125 l^2 / nu
+    forces,    // 0.25 sqrt(h / a_max)
+    dt_min,    // solver.dt_min: every condition asked for less
+    count
+};
+// The names run.json uses, in the enum's order.
+inline constexpr std::array<std::string_view, std::size_t(TimeStepLimit::count)>
+    time_step_limit_names{"dt_max", "sound", "particles", "viscosity", "forces", "dt_min"};
+
+// The step the conditions above allow for the given rates, within [dt_min,
+// dt_max]; `limit`, when given, says which condition set it.
 Real stable_time_step(const TimeStepSettings& settings, const TimeStepScales& scales,
-                      TimeStepModel model, ExtremeRates rates);
+                      TimeStepModel model, ExtremeRates rates, TimeStepLimit* limit = nullptr);
 
 // `viscosity`: the largest mu by which an effect limits the step
 // (diffusion_viscosity in effects/effect.hpp), 0 for none.
 template <int D>
 Real stable_time_step(const Params<D>& params, TimeStepModel model, ExtremeRates rates,
-                      Real viscosity) {
+                      Real viscosity, TimeStepLimit* limit = nullptr) {
     return stable_time_step(
         params.time_step,
         {params.h, params.spacing, params.sound_speed(), params.rest_density, viscosity}, model,
-        rates);
+        rates, limit);
 }
 
 } // namespace sph

@@ -39,7 +39,17 @@ class ExplicitSolver : public Solver<D> {
             accelerations_for_ = state.size();
         } else {
             compute_accelerations(params, state, context);
-            {
+            if (carries_fields(params)) {
+                {
+                    auto timed = context.time(Stage::integration);
+                    kick(dt, state);
+                }
+                // Carried fields advance with the new velocities, as the
+                // positions do (symplectic Euler for them too).
+                advance_carried(params, dt, state, context);
+                auto timed = context.time(Stage::integration);
+                drift(dt, state);
+            } else {
                 auto timed = context.time(Stage::integration);
                 integrate_symplectic_euler(dt, state);
             }
@@ -62,6 +72,16 @@ class ExplicitSolver : public Solver<D> {
     // state.acceleration = every force of the model at the current state.
     virtual void compute_accelerations(const Params<D>& params, State<D>& state,
                                        StepContext<D>& context) = 0;
+    // Fields the solver carries from step to step besides x and v (wcsph's
+    // continuity density), advanced by dt after the kick and before the
+    // drift: their rates from the step's positions and neighbour lists and
+    // the new velocities. Taken from the old velocities, the density and
+    // the velocity would both step forward from the old state, and the sound
+    // waves between them grow at every step (explicit Euler on an
+    // oscillator). Symplectic Euler only (the scene checks it).
+    virtual bool carries_fields(const Params<D>& /*params*/) const { return false; }
+    virtual void advance_carried(const Params<D>& /*params*/, Real /*dt*/, State<D>& /*state*/,
+                                 StepContext<D>& /*context*/) {}
 
   private:
     bool accelerations_current_ = false;

@@ -55,8 +55,19 @@ const KeyTable<SolverSettings>& solver_keys() {
          .doc = "Pressure of the boundary particles (wcsph, dfsph): mirror (the fluid particle's "
                 "own, p_b = p_i) or hydrostatic (plus the weight of the fluid between them, "
                 "p_b = p_i + rho_i g . (x_b - x_i) for a wall below, Adami et al. 2012), so that "
-                "the layers at a floor are not compressed beyond the hydrostatic pressure.",
-         .choices = {"mirror", "hydrostatic"}},
+                "the layers at a floor are not compressed beyond the hydrostatic pressure; or "
+                "extrapolated (wcsph: Adami et al. 2012's eq. 27 whole, the Shepard average of "
+                "the fluid's pressures around the wall particle plus that weight; double "
+                "precision).",
+         .choices = {"mirror", "hydrostatic", "extrapolated"}},
+        {.path = "density_diffusion",
+         .field = &S::density_diffusion,
+         .doc = "wcsph: delta of delta-SPH's density diffusion (Antuono et al. 2010, with the "
+                "renormalised density gradient; 0.1 is the usual value). Above 0 the density is "
+                "carried by the continuity equation rather than summed (symplectic Euler only), "
+                "in double precision; 0: summed. The other solvers sum their density and ignore "
+                "it.",
+         .bound = Bound::non_negative},
         {.path = "artificial_viscosity",
          .field = &S::artificial_viscosity,
          .doc = "Alpha of Monaghan's artificial viscosity (wcsph).",

@@ -35,8 +35,10 @@ struct SolverSettings {
     // The arithmetic of wcsph's density and pressure passes
     // (sph/single_precision/cell_passes.hpp); none: auto.
     std::optional<Precision> precision;
-    // mirror | hydrostatic (sph/params.hpp)
+    // mirror | hydrostatic | extrapolated (sph/params.hpp)
     WallPressure wall_pressure = WallPressure::mirror;
+    // wcsph: delta of delta-SPH (Antuono et al. 2010); 0: the density summed.
+    double density_diffusion = 0;
 };
 
 // The keys of `solver`, in the order `sphclip keys` lists them.

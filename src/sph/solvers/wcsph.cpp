@@ -1,9 +1,12 @@
 #include "sph/solvers/wcsph.hpp"
 
+#include "sph/density_diffusion.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/pressure_acceleration.hpp"
 #include "sph/solvers/density_with_walls.hpp"
+#include "sph/wall_pressure.hpp"
 
+#include <algorithm>
 #include <array>
 #include <stdexcept>
 #include <type_traits>
@@ -11,6 +14,30 @@
 namespace sph {
 
 namespace {
+
+// The carried density (solver.density_diffusion): the neighbours, and the
+// density of particles that have none yet (the start, an emitter's new
+// ones: density 0) from the summation, but not below rho0, which a particle
+// at a free surface sums to for want of neighbours. The step advances it
+// (advance_carried).
+template <int D, class Kernel>
+void carried_density(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
+                     State<D>& state) {
+    context.find_neighbours(state.position, params.h);
+    const std::size_t n = state.size();
+    if (std::any_of(state.density.begin(), state.density.end(),
+                    [](Real rho) { return rho <= 0; })) {
+        auto timed = context.time(Stage::density);
+        std::vector<Real> carried = state.density;
+        compute_density(params, kernel, context.neighbours, state);
+        if (context.boundary)
+            add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours,
+                                 state);
+        for (std::size_t i = 0; i < n; ++i)
+            state.density[i] =
+                carried[i] > 0 ? carried[i] : std::max(state.density[i], params.rest_density);
+    }
+}
 
 // Density by summation over fluid and wall particles: in double on
 // neighbour lists, or in float on grid cells.
@@ -30,13 +57,19 @@ void density(const Params<D>& params, const Kernel& kernel, StepContext<D>& cont
     cells.density(params, params.kernel, context.boundary, state);
 }
 
+// Tait's pressure from the density.
+template <int D>
+void pressure(const Params<D>& params, StepContext<D>& context, State<D>& state) {
+    auto timed = context.time(Stage::pressure);
+    compute_pressure_tait(params, state);
+}
+
 // The density, then Tait's pressure.
 template <int D, class Kernel>
 void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
                           SinglePasses<D>* single, State<D>& state) {
     density(params, kernel, context, single, state);
-    auto timed = context.time(Stage::pressure);
-    compute_pressure_tait(params, state);
+    pressure(params, context, state);
 }
 
 } // namespace
@@ -56,20 +89,34 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
                                       laminar ? &morris : nullptr};
     SinglePasses<D>* single = params.precision == Precision::single ? &single_passes() : nullptr;
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
-        // 1. Neighbours, density (fluid + walls), p = B ((rho / rho0)^7 - 1).
-        density_and_pressure(params, kernel, context, single, state);
+        // 1. Neighbours, density (fluid + walls, summed, or carried:
+        // advance_carried), p = B ((rho / rho0)^7 - 1).
+        if (params.density_diffusion > 0) {
+            carried_density(params, kernel, context, state);
+            pressure(params, context, state);
+        } else
+            density_and_pressure(params, kernel, context, single, state);
         // Over ranks: the halo's densities and pressures from their owners.
         context.share_halo_densities(state);
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij) grad W,
         // walls included, and Morris's viscosity.
-        auto timed = context.time(Stage::pressure);
         if (params.precision == Precision::single) {
+            auto timed = context.time(Stage::pressure);
             single->pressure_acceleration(params, kernel_, context.boundary, viscosities, state);
             return;
         }
+        // The walls' own pressure, from the fluid's just computed.
+        const Real* wall_term = nullptr;
+        if (params.wall_pressure == WallPressure::extrapolated && context.boundary) {
+            auto timed_walls = context.time(Stage::wall_pressure);
+            extrapolate_wall_pressure(params, kernel, *context.boundary,
+                                      context.boundary_neighbours, state, wall_pressure_);
+            wall_term = wall_pressure_.pressure_term.data();
+        }
+        auto timed = context.time(Stage::pressure);
         compute_pressure_acceleration(params, kernel, context.neighbours, context.boundary,
                                       context.boundary_neighbours, viscosities, pressure_term_,
-                                      state);
+                                      state, wall_term);
     });
     // 3. The other effects the scene names: gravity, ... (in single
     // precision none that reads neighbour lists: the scene checks it).
@@ -82,7 +129,11 @@ void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
                                    StepContext<D>& context) {
     SinglePasses<D>* single = params.precision == Precision::single ? &single_passes() : nullptr;
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
-        if (context.output_pressure)
+        if (params.density_diffusion > 0) {
+            carried_density(params, kernel, context, state);
+            if (context.output_pressure)
+                pressure(params, context, state);
+        } else if (context.output_pressure)
             density_and_pressure(params, kernel, context, single, state);
         else // the next step computes its own pressure
             density(params, kernel, context, single, state);
@@ -91,6 +142,23 @@ void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
     // which single-precision steps do not build.
     if (params.precision == Precision::single)
         context.find_neighbours(state.position, params.h);
+}
+
+template <int D>
+void WcsphSolver<D>::advance_carried(const Params<D>& params, Real dt, State<D>& state,
+                                     StepContext<D>& context) {
+    if (params.density_diffusion <= 0)
+        return;
+    with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
+        auto timed = context.time(Stage::density_rate);
+        compute_density_rate(params, kernel, context.neighbours, context.boundary,
+                             context.boundary_neighbours, state, continuity_, density_rate_);
+    });
+    auto timed = context.time(Stage::integration);
+    const std::size_t n = state.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+        state.density[i] += dt * density_rate_[i];
 }
 
 template class WcsphSolver<2>;

@@ -5,9 +5,11 @@
 // boundary particles (Akinci et al. 2012). The stiffness K (material.bulk_modulus)
 // sets the sound speed c = sqrt(K / rho0); density errors scale like (v / c)^2.
 
+#include "sph/density_diffusion.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/single_precision/single_passes.hpp"
 #include "sph/solvers/explicit_solver.hpp"
+#include "sph/wall_pressure.hpp"
 
 #include <memory>
 #include <vector>
@@ -38,6 +40,11 @@ class WcsphSolver final : public ExplicitSolver<D> {
   protected:
     void compute_accelerations(const Params<D>& params, State<D>& state,
                                StepContext<D>& context) override;
+    bool carries_fields(const Params<D>& params) const override {
+        return params.density_diffusion > 0;
+    }
+    void advance_carried(const Params<D>& params, Real dt, State<D>& state,
+                         StepContext<D>& context) override;
 
   private:
     // The single-precision passes and their buffers, made at their first
@@ -50,6 +57,11 @@ class WcsphSolver final : public ExplicitSolver<D> {
 
     KernelKind kernel_;
     std::vector<Real> pressure_term_; // p / rho^2 per particle, scratch
+    // solver.density_diffusion: D rho / Dt, kg/(m^D s), and the renormalised
+    // density gradients (sph/density_diffusion.hpp), scratch of each step.
+    std::vector<Real> density_rate_;
+    ContinuityScratch<D> continuity_;
+    WallPressureScratch wall_pressure_; // solver.wall_pressure extrapolated
     std::unique_ptr<SinglePasses<D>> single_;
 };
 

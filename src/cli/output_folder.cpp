@@ -87,6 +87,13 @@ void create_folder(const fs::path& folder) {
     if (::access(folder.c_str(), W_OK | X_OK) != 0)
         throw InputError("command line", "--out",
                          fmt::format("the output folder {} is not writable", folder.string()));
+    // A run fills its folder with frames/, stats.csv, run.json...: the
+    // filesystem's root (`--out /`, or a link to it) is never meant.
+    if (fs::equivalent(folder, "/", ec))
+        throw InputError(
+            "command line", "--out",
+            fmt::format("{} is the filesystem's root; give the run a folder of its own",
+                        folder.string()));
 }
 
 // Opens and locks folder/.sphclip.lock, with this process's pid in it; refuses
@@ -138,6 +145,13 @@ bool check_output_names(const fs::path& folder) {
                                            "another --out",
                                            name, S_ISDIR(info.st_mode) ? "a folder" : "a file",
                                            is_folder ? "a folder" : "a file"));
+            // A pipe, a socket or a device under a run's name is no run's:
+            // neither written to nor removed.
+            if (!S_ISDIR(info.st_mode) && !S_ISREG(info.st_mode))
+                refuse(folder, fmt::format("{} is not a regular file (a pipe, a socket or a "
+                                           "device) where a run writes a file: remove it or "
+                                           "give another --out",
+                                           p.filename().string()));
         }
         if (!look(path, info))
             continue;

@@ -73,7 +73,7 @@ ObjLines scan_obj_lines(std::string_view text,
     std::size_t line_number = 0;
     for (std::size_t begin = 0; begin < text.size();) {
         // Lines end as tinyobjloader ends them: at "\n", "\r\n" or a lone
-        // "\r" (a polygon on a line of its own only to it would reach its
+        // "\r" (a polygon on a line that only it saw as one would reach its
         // quadratic splitting).
         std::size_t end = text.find_first_of("\r\n", begin);
         if (end == std::string_view::npos)

@@ -79,6 +79,14 @@ namespace {
 // The folder made where it is missing, and writable.
 void create_folder(const fs::path& folder) {
     std::error_code ec;
+    // A run fills its folder with frames/, stats.csv, run.json...: the
+    // filesystem's root (`--out /`, or a link to it) is never meant. Checked
+    // first, so that the reason given is this one even where / is read-only.
+    if (fs::equivalent(folder, "/", ec))
+        throw InputError(
+            "command line", "--out",
+            fmt::format("{} is the filesystem's root; give the run a folder of its own",
+                        folder.string()));
     fs::create_directories(folder, ec);
     if (ec || !fs::is_directory(folder))
         throw InputError("command line", "--out",
@@ -87,13 +95,6 @@ void create_folder(const fs::path& folder) {
     if (::access(folder.c_str(), W_OK | X_OK) != 0)
         throw InputError("command line", "--out",
                          fmt::format("the output folder {} is not writable", folder.string()));
-    // A run fills its folder with frames/, stats.csv, run.json...: the
-    // filesystem's root (`--out /`, or a link to it) is never meant.
-    if (fs::equivalent(folder, "/", ec))
-        throw InputError(
-            "command line", "--out",
-            fmt::format("{} is the filesystem's root; give the run a folder of its own",
-                        folder.string()));
 }
 
 // Opens and locks folder/.sphclip.lock, with this process's pid in it; refuses

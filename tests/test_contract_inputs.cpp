@@ -15,8 +15,10 @@
 #include "support/text.hpp"
 
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -24,6 +26,8 @@
 #include <string>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -112,6 +116,16 @@ TEST_CASE("inputs: each kind has its documented limit", "[contract][inputs]") {
 TEST_CASE("inputs: a scene that is a device is refused with exit 2, naming the file",
           "[contract][inputs]") {
     TempFolder tmp;
+    // A scene past its limit (a string value of a gigabyte would be): a
+    // sparse file, refused by its size before it is read.
+    { std::ofstream(tmp / "huge.json") << "{\"output\": {\"name\": \""; }
+    fs::resize_file(tmp / "huge.json", sph::scene_file_limit.bytes + 1);
+    const auto huge =
+        run_sphclip(tmp, {"run", (tmp / "huge.json").string(), "--out", (tmp / "out").string()});
+    CHECK(huge.exit_code == 2);
+    CHECK(contains(huge.output, "huge.json: cannot read the scene file: the file is 16 MiB "
+                                "(16777217 bytes); a scene file is at most 16 MiB"));
+    CHECK_FALSE(fs::exists(tmp / "out"));
     fs::create_symlink("/dev/zero", tmp / "scene.json");
     for (const std::string& scene : {std::string("/dev/zero"), (tmp / "scene.json").string()}) {
         const auto result = run_sphclip(tmp, {"run", scene, "--out", (tmp / "out").string()});
@@ -142,6 +156,19 @@ TEST_CASE("inputs: a PNG that is a device or claims a huge size is refused befor
     // Within a side but too many pixels in all.
     CHECK_THROWS_AS(sph::decode_png(png_claiming(16384, 16384, tmp), "many.png"),
                     sph::ImageReadError);
+    // A PNG cut short anywhere (in its header, its pixels, before IEND) is
+    // refused as unreadable, never read past its end.
+    sph::Image whole(16, 16);
+    for (std::size_t k = 0; k < whole.rgba.size(); ++k)
+        whole.rgba[k] = std::uint8_t(k * 37);
+    sph::write_png(tmp / "whole.png", whole);
+    const std::string bytes = read_text(tmp / "whole.png");
+    for (const std::size_t length : {std::size_t(8), std::size_t(20), std::size_t(33),
+                                     bytes.size() / 2, bytes.size() - 12, bytes.size() - 1}) {
+        INFO("cut at " << length << " of " << bytes.size());
+        CHECK_THROWS_AS(sph::decode_png(bytes.substr(0, length), "cut.png"), sph::ImageReadError);
+    }
+    CHECK(sph::decode_png(bytes, "whole.png").rgba == whole.rgba);
     // compare says which file.
     write_text(tmp / "lie.png", lie);
     const auto result =
@@ -207,13 +234,23 @@ TEST_CASE("inputs: an OBJ mesh that is a device, has a bad vertex or a huge face
                    "line 2: vertex coordinate \"nan\" is not a finite number"));
     CHECK(contains(refusal_of("v 0 0 0\nv 1 0 0\nv 0 1e300 0\nv 0 0 1\n" + tetrahedron_faces),
                    "line 3: vertex coordinate \"1e300\" is 1e+300 m from the origin"));
-    // A face of 200,000 corners is refused at once (tinyobjloader's ear
-    // clipping took minutes on it).
+    // A face of 200,000 corners that goes round a tetrahedron's corners
+    // 50,000 times is refused within about a second (tinyobjloader's ear
+    // clipping took minutes on it): every ear holds 50,000 of its corners.
     std::string huge = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf";
     for (int k = 0; k < 200000; ++k)
         huge += fmt::format(" {}", 1 + k % 4);
     huge += "\n";
-    CHECK(contains(refusal_of(huge), "line 5: a face of more than 256 corners"));
+    CHECK(contains(refusal_of(huge), "line 5: a face of 200000 corners too irregular to split"));
+    // A corner that names no vertex, by its line.
+    CHECK(contains(refusal_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 x\n"),
+                   "line 4: face corner \"x\" does not name a vertex"));
+    // Lines that end in a lone "\r", as tinyobjloader reads them: the
+    // polygon is still split here (not by its quadratic splitting).
+    CHECK(contains(refusal_of("v 0 0 0\rv 1 0 0\r\nv 0 1 0\rf 1 2 3 x\r"),
+                   "line 4: face corner \"x\" does not name a vertex"));
+    CHECK(contains(refusal_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 9\n"),
+                   "line 4: the face names vertex 9, but the file has 3 vertices"));
 
     // Through the file reader: a symlink to /dev/zero.
     fs::create_symlink("/dev/zero", tmp / "zero.obj");
@@ -223,6 +260,94 @@ TEST_CASE("inputs: an OBJ mesh that is a device, has a bad vertex or a huge face
     } catch (const sph::InputError& e) {
         CHECK(contains(e.problem, "cannot read the mesh file: not a regular file"));
     }
+}
+
+namespace {
+
+// A prism whose two caps are the polygon `outline` (counter-clockwise, in
+// z = 0 and z = height), its sides quads.
+std::string prism_obj(const std::vector<std::array<double, 2>>& outline, double height) {
+    const int n = int(outline.size());
+    std::string text;
+    for (int z = 0; z < 2; ++z)
+        for (const auto& [x, y] : outline)
+            text += fmt::format("v {:.17g} {:.17g} {}\n", x, y, z * height);
+    // The bottom cap seen from below (counter-clockwise from outside), the
+    // top from above, with relative (negative) numbers on the top.
+    text += "f";
+    for (int k = n; k >= 1; --k)
+        text += fmt::format(" {}", k);
+    text += "\nf";
+    for (int k = 0; k < n; ++k)
+        text += fmt::format(" {}/1/1", k - n);
+    text += "\n";
+    for (int k = 0; k < n; ++k) {
+        const int b = 1 + k, b2 = 1 + (k + 1) % n;
+        text += fmt::format("f {} {} {} {}\n", b, b2, b2 + n, b + n);
+    }
+    return text;
+}
+
+double shoelace_area(const std::vector<std::array<double, 2>>& outline) {
+    double twice = 0;
+    for (std::size_t k = 0; k < outline.size(); ++k) {
+        const auto& [x0, y0] = outline[k];
+        const auto& [x1, y1] = outline[(k + 1) % outline.size()];
+        twice += x0 * y1 - x1 * y0;
+    }
+    return twice / 2;
+}
+
+} // namespace
+
+TEST_CASE("inputs: an OBJ face of 200,000 corners, convex or not, is split into triangles",
+          "[contract][inputs]") {
+    // A face of more than 256 corners used to be refused, after
+    // tinyobjloader's quadratic ear clipping had taken minutes on one.
+    // A circle of 10,000 corners (finer, its ears would have too little area
+    // for the solid check), and a strip 100,000 m long whose long sides are
+    // saw teeth: 200,000 corners, half of them reflex.
+    std::vector<std::array<double, 2>> circle, saw;
+    for (int k = 0; k < 10000; ++k)
+        circle.push_back({std::cos(2 * M_PI * k / 10000), std::sin(2 * M_PI * k / 10000)});
+    const int teeth = 100000;
+    for (int k = 0; k < teeth; ++k) // the bottom, left to right, teeth down
+        saw.push_back({double(k), k % 2 ? -0.5 : 0.0});
+    for (int k = teeth - 1; k >= 0; --k) // the top, right to left, teeth up
+        saw.push_back({double(k), k % 2 ? 1.5 : 1.0});
+    // The strip's prism is as tall as it is long: a flat slab would enclose
+    // too little volume for the solid check.
+    for (const auto& [outline, height] : {std::pair{circle, 1.0}, std::pair{saw, double(teeth)}}) {
+        const std::size_t n = outline.size();
+        INFO(n << " corners");
+        const auto mesh =
+            sph::parse_obj_mesh(prism_obj(outline, height), "prism.obj", 1, sph::Vec<3>(0),
+                                "scene.json", "effects.obstacles[0].file");
+        // n - 2 triangles a cap, two a side.
+        CHECK(mesh->triangles().size() == 2 * (n - 2) + 2 * n);
+        CHECK(mesh->volume() == Approx(shoelace_area(outline) * height).epsilon(1e-9));
+    }
+    // A small concave face, a quad with a reflex corner, and a hexagon with
+    // corners on a straight line: split without a degenerate triangle.
+    const auto arrow = sph::split_polygon({{0, 0, 0}, {2, 1, 0}, {0, 2, 0}, {0.5, 1, 0}});
+    REQUIRE(arrow.size() == 2);
+    for (const auto& t : arrow)
+        CHECK(std::find(t.begin(), t.end(), 3u) != t.end());
+    const auto straight =
+        sph::split_polygon({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {0, 1, 0}});
+    REQUIRE(straight.size() == 4);
+    const std::vector<sph::Vec<3>> hexagon{{0, 0, 0}, {1, 0, 0}, {2, 0, 0},
+                                           {2, 1, 0}, {1, 1, 0}, {0, 1, 0}};
+    double total = 0;
+    for (const auto& t : straight) {
+        const double area = 0.5 * glm::length(glm::cross(hexagon[t[1]] - hexagon[t[0]],
+                                                         hexagon[t[2]] - hexagon[t[0]]));
+        CHECK(area > 0.1);
+        // Wound as the hexagon is: counter-clockwise about +z.
+        CHECK(glm::cross(hexagon[t[1]] - hexagon[t[0]], hexagon[t[2]] - hexagon[t[0]]).z > 0);
+        total += area;
+    }
+    CHECK(total == Approx(2));
 }
 
 namespace {
@@ -292,6 +417,32 @@ TEST_CASE("inputs: command-line values that cannot be meant are refused with exi
     refused({"--set", "fluid.blocks.1.velocity=[1,0]"},
             {"fluid.blocks.1.velocity (from --set)", "'fluid.blocks' has 1 element",
              "--set fluid.blocks.1={...}"});
+    // Zero: one short line, where CLI11's range printed DBL_MAX in 309 digits.
+    for (const char* flag : {"--duration", "--fps"}) {
+        TempFolder quiet;
+        const auto result = run_sphclip(quiet, {"run", (tmp / "scene.json").string(), "--out",
+                                                (tmp / "out").string(), flag, "0"});
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, std::string(flag) + ": 0 is not a finite number above 0"));
+        CHECK(result.output.find("0000000000") == std::string::npos);
+        CHECK(result.output.size() < 400);
+    }
+    // compare's --max-pixels printed the same 309 digits.
+    for (const char* count : {"-1", "1.5", "nan", "99999999999999999999999"}) {
+        const auto result = run_sphclip(tmp, {"compare", "a.png", "b.png", "--max-pixels", count});
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "--max-pixels"));
+        CHECK(result.output.find("0000000000") == std::string::npos);
+        CHECK(result.output.size() < 400);
+    }
+    // A key through a value that is not an object, or a list indexed by a
+    // word in UTF-8 (its bytes above 127 were given to ::isdigit).
+    refused({"--set", "fluid.spacing.x=1"},
+            {"fluid.spacing.x (from --set)", "'fluid.spacing' is not an object"});
+    refused({"--set", "fluid.blocks.\xc3\xa9=1"},
+            {"'fluid.blocks' is a list; index it with a number"});
 }
 
 TEST_CASE("inputs: control characters in a value are shown escaped, the whole message kept",

@@ -20,6 +20,7 @@ extern "C" {
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -190,6 +191,19 @@ TEST_CASE("output folder: entries of the wrong type and a user's files are refus
         CHECK(result.exit_code == 2);
         CHECK(contains(result.output, "frames is a file where a run writes a folder"));
     }
+    SECTION("a pipe named stats.csv beside an earlier run's run.json") {
+        REQUIRE(run_sphclip(tmp, run).exit_code == 0);
+        fs::remove(out / "stats.csv");
+        REQUIRE(::mkfifo((out / "stats.csv").c_str(), 0644) == 0);
+        // It used to be removed as the earlier run's stats.csv.
+        const auto result = run_sphclip(tmp, run);
+        INFO(result.output);
+        CHECK(result.exit_code == 2);
+        CHECK(contains(result.output, "stats.csv is not a regular file"));
+        CHECK(fs::is_fifo(out / "stats.csv"));
+        fs::remove(out / "stats.csv");
+        fs::remove(out / "run.json");
+    }
     SECTION("a clip.mp4 that no sphclip run made") {
         write_text(out / "clip.mp4", "the user's video");
         const auto result = run_sphclip(tmp, run);
@@ -202,6 +216,39 @@ TEST_CASE("output folder: entries of the wrong type and a user's files are refus
     for (const char* name : {"run.json.partial", "stats.csv", "clip.mp4.partial"})
         CHECK_FALSE(fs::exists(out / name));
     CHECK_FALSE(fs::is_regular_file(out / "run.json"));
+}
+
+TEST_CASE("output folder: the filesystem's root is refused as an output folder, even through "
+          "a link",
+          "[contract][output_folder]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", small_scene);
+    fs::create_directory_symlink("/", tmp / "root");
+    // As root the run used to write /run.json, /stats.csv and /.sphclip.lock.
+    // So that a regression cannot write there, the test runs it as nobody
+    // when it is root (from a copy of the program nobody can reach): / is
+    // then read-only to it, and only the message tells the two refusals apart.
+    std::string program = SPHCLIP_EXE, as_user;
+    if (::geteuid() == 0) {
+        program = (tmp / "sphclip").string();
+        fs::copy_file(SPHCLIP_EXE, program);
+        fs::permissions(tmp.path(), fs::perms::all);
+        fs::permissions(tmp / "scene.json", fs::perms::owner_all | fs::perms::others_read);
+        as_user = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+    }
+    for (const std::string& out : {std::string("/"), (tmp / "root").string()}) {
+        INFO(out);
+        const std::string command =
+            fmt::format("cd {} && {}{} run {} --out {} --no-png --no-mp4 --threads 1 > {} 2>&1",
+                        shell_quote(tmp.path().string()), as_user, shell_quote(program),
+                        shell_quote((tmp / "scene.json").string()), shell_quote(out),
+                        shell_quote((tmp / "log").string()));
+        const int status = std::system(command.c_str());
+        const std::string log = read_text(tmp / "log");
+        INFO(log);
+        CHECK((WIFEXITED(status) ? WEXITSTATUS(status) : -1) == 2);
+        CHECK(contains(log, "--out: " + out + " is the filesystem's root"));
+    }
 }
 
 TEST_CASE("output folder: a frames/ the run cannot write to is refused before anything is "

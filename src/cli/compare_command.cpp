@@ -7,7 +7,9 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -43,6 +45,21 @@ CLI::Validator number_from(double low, double high) {
             return {};
         },
         fmt::format("{} to {}", low, high));
+}
+
+// A pixel count, 0 or more. CLI::NonNegativeNumber printed its range with
+// the largest double in full, 309 digits.
+CLI::Validator pixel_count() {
+    return CLI::Validator(
+        [](std::string& input) -> std::string {
+            std::uint64_t value = 0;
+            const char* end = input.data() + input.size();
+            const auto [stop, error] = std::from_chars(input.data(), end, value);
+            if (input.empty() || error != std::errc() || stop != end)
+                return fmt::format("{} is not a whole number of pixels, 0 or more", input);
+            return {};
+        },
+        "PIXELS");
 }
 
 Image read_input(const std::string& path) {
@@ -381,7 +398,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareCliOptions& options) {
         ->capture_default_str();
     cmd->add_option("--max-pixels", options.thresholds.max_different_pixels,
                     "Largest number of differing pixels allowed")
-        ->check(CLI::NonNegativeNumber)
+        ->check(pixel_count())
         ->capture_default_str();
     cmd->add_option("--diff", options.diff,
                     "Write the difference image here (PNG); with folders, a folder for the "

@@ -79,6 +79,14 @@ namespace {
 // The folder made where it is missing, and writable.
 void create_folder(const fs::path& folder) {
     std::error_code ec;
+    // A run fills its folder with frames/, stats.csv, run.json...: the
+    // filesystem's root (`--out /`, or a link to it) is never meant. Checked
+    // first, so that the reason given is this one even where / is read-only.
+    if (fs::equivalent(folder, "/", ec))
+        throw InputError(
+            "command line", "--out",
+            fmt::format("{} is the filesystem's root; give the run a folder of its own",
+                        folder.string()));
     fs::create_directories(folder, ec);
     if (ec || !fs::is_directory(folder))
         throw InputError("command line", "--out",
@@ -138,6 +146,13 @@ bool check_output_names(const fs::path& folder) {
                                            "another --out",
                                            name, S_ISDIR(info.st_mode) ? "a folder" : "a file",
                                            is_folder ? "a folder" : "a file"));
+            // A pipe, a socket or a device under a run's name is no run's:
+            // neither written to nor removed.
+            if (!S_ISDIR(info.st_mode) && !S_ISREG(info.st_mode))
+                refuse(folder, fmt::format("{} is not a regular file (a pipe, a socket or a "
+                                           "device) where a run writes a file: remove it or "
+                                           "give another --out",
+                                           p.filename().string()));
         }
         if (!look(path, info))
             continue;

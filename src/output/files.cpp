@@ -118,9 +118,12 @@ std::string read_input_file(const std::filesystem::path& path, const InputLimit&
                                               "a {} must be a regular file",
                                               limit.kind));
     const auto too_large = [&](double size) {
-        return FileReadError(path,
-                             fmt::format("the file is {}; a {} is at most {}", format_bytes(size),
-                                         limit.kind, format_bytes(double(limit.bytes))));
+        // In bytes too where rounding would hide the excess ("16 MiB; at most 16 MiB").
+        const std::string is = size < 1024
+                                   ? format_bytes(size)
+                                   : fmt::format("{} ({:.0f} bytes)", format_bytes(size), size);
+        return FileReadError(path, fmt::format("the file is {}; a {} is at most {}", is, limit.kind,
+                                               format_bytes(double(limit.bytes))));
     };
     if (std::uint64_t(info.st_size) > limit.bytes)
         throw too_large(double(info.st_size));

@@ -4,23 +4,24 @@
 #include "scene/input_error.hpp"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <functional>
 #include <map>
+#include <queue>
 #include <string_view>
 #include <tiny_obj_loader.h>
+#include <tuple>
 #include <vector>
 
 namespace sph {
 
 namespace {
 
-// The most corners one `f` line may have. tinyobjloader splits a polygon by
-// ear clipping, quadratic in its corners: a 200,000-corner face took minutes.
-// No exporter writes solids that way; triangles and quads are the rule.
-constexpr std::size_t max_face_corners = 256;
 // Past this distance from the origin a vertex is a mistake, not a solid:
 // the solid checks' cross products would overflow long before.
 constexpr Real max_vertex_distance = 1e12; // m
@@ -31,19 +32,57 @@ struct VertexLine {
     std::vector<std::string> words;
 };
 
-// Checks what tinyobjloader would take too long on or read wrongly, naming
-// the line: a face with too many corners, a vertex coordinate that is not a
-// finite number. Returns the `v` lines, for check_vertices.
-std::vector<VertexLine> scan_obj_lines(std::string_view text,
-                                       const std::function<void(const std::string&)>& fail) {
-    std::vector<VertexLine> vertex_lines;
+// An `f` line of more than three corners, split by split_polygon rather
+// than by tinyobjloader (whose ear clipping tests every corner against every
+// ear: minutes for 200,000 corners, and at most 255 corners kept).
+struct PolygonLine {
+    std::size_t line;
+    std::vector<std::int64_t> corners; // 0-based vertex numbers, as written
+};
+
+struct ObjLines {
+    std::vector<VertexLine> vertices;
+    std::vector<PolygonLine> polygons;
+    // The text for tinyobjloader: each polygon's `f` made a comment (`#`),
+    // so that it reads the vertices and the triangles only.
+    std::string triangles_only;
+};
+
+// The vertex a face corner ("7", "7/2", "7//3", "-1/2/3") names, 0-based:
+// a negative number counts back from the last vertex before the face.
+std::int64_t corner_vertex(std::string_view word, std::size_t vertices_before,
+                           std::size_t line_number,
+                           const std::function<void(const std::string&)>& fail) {
+    const std::string_view number = word.substr(0, word.find('/'));
+    std::int64_t index = 0;
+    const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), index);
+    if (error != std::errc() || end != number.data() + number.size() || index == 0)
+        fail(fmt::format("line {}: face corner \"{}\" does not name a vertex (1 is the first, "
+                         "-1 the last before the face)",
+                         line_number, word.substr(0, 40)));
+    return index > 0 ? index - 1 : std::int64_t(vertices_before) + index;
+}
+
+// Checks what tinyobjloader would read wrongly, naming the line: a vertex
+// coordinate that is not a finite number. Returns the `v` lines, for
+// check_vertices, and the polygons.
+ObjLines scan_obj_lines(std::string_view text,
+                        const std::function<void(const std::string&)>& fail) {
+    ObjLines lines;
+    lines.triangles_only = std::string(text);
     std::size_t line_number = 0;
     for (std::size_t begin = 0; begin < text.size();) {
-        std::size_t end = text.find('\n', begin);
+        // Lines end as tinyobjloader ends them: at "\n", "\r\n" or a lone
+        // "\r" (a polygon on a line that only it saw as one would reach its
+        // quadratic splitting).
+        std::size_t end = text.find_first_of("\r\n", begin);
         if (end == std::string_view::npos)
             end = text.size();
         std::string_view line = text.substr(begin, end - begin);
-        begin = end + 1;
+        // tinyobjloader reads a line as a C string: it ends at a NUL.
+        line = line.substr(0, line.find('\0'));
+        const std::size_t line_begin = begin;
+        begin = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
         ++line_number;
         const std::size_t first = line.find_first_not_of(" \t");
         if (first == std::string_view::npos || line.size() < first + 2)
@@ -54,6 +93,7 @@ std::vector<VertexLine> scan_obj_lines(std::string_view text,
         if (!face && !vertex)
             continue;
         std::vector<std::string> words;
+        std::vector<std::string_view> corners;
         for (std::size_t at = 1; at < line.size();) {
             const std::size_t w = line.find_first_not_of(" \t\r", at);
             if (w == std::string_view::npos)
@@ -62,12 +102,17 @@ std::vector<VertexLine> scan_obj_lines(std::string_view text,
             if (vertex && words.size() < 3)
                 words.emplace_back(line.substr(w, w_end - w));
             else if (face)
-                words.emplace_back();
+                corners.push_back(line.substr(w, w_end - w));
             at = w_end;
-            if (face && words.size() > max_face_corners)
-                fail(fmt::format("line {}: a face of more than {} corners; split it into "
-                                 "triangles (sphclip reads faces of at most {} corners)",
-                                 line_number, max_face_corners, max_face_corners));
+        }
+        if (face && corners.size() > 3) {
+            PolygonLine polygon{line_number, {}};
+            polygon.corners.reserve(corners.size());
+            for (const std::string_view corner : corners)
+                polygon.corners.push_back(
+                    corner_vertex(corner, lines.vertices.size(), line_number, fail));
+            lines.polygons.push_back(std::move(polygon));
+            lines.triangles_only[line_begin + first] = '#';
         }
         if (vertex) {
             // tinyobjloader reads "nan" or "x" as 0: check the text itself.
@@ -78,10 +123,10 @@ std::vector<VertexLine> scan_obj_lines(std::string_view text,
                     fail(fmt::format("line {}: vertex coordinate \"{}\" is not a finite number",
                                      line_number, word.substr(0, 40)));
             }
-            vertex_lines.push_back({line_number, std::move(words)});
+            lines.vertices.push_back({line_number, std::move(words)});
         }
     }
-    return vertex_lines;
+    return lines;
 }
 
 // Refuses a vertex, as tinyobjloader read it, that is not a finite number
@@ -112,6 +157,174 @@ void check_vertices(const std::vector<tinyobj::real_t>& coordinates, Real scale,
 
 } // namespace
 
+// Splits one polygon into triangles by ear clipping (Meisters' two-ears
+// theorem: a simple polygon of more than three corners has two
+// non-overlapping ears), in the plane the polygon's Newell normal is most
+// nearly along. Only reflex corners can lie inside an ear, so only they are
+// tested, found through a uniform grid: a polygon of n corners takes about
+// n ear tests of a few grid cells each, where testing every corner against
+// every ear (tinyobjloader's way) took minutes for 200,000 corners.
+std::vector<Triangle> split_polygon(const std::vector<Vec<3>>& corners) {
+    std::vector<Triangle> triangles;
+    const std::size_t n = corners.size();
+    if (n < 3)
+        return triangles;
+    triangles.reserve(n - 2);
+    // Newell's normal, about the first corner so that far-off polygons keep
+    // their digits.
+    Vec<3> normal(0);
+    for (std::size_t i = 0; i < n; ++i)
+        normal += glm::cross(corners[i] - corners[0], corners[(i + 1) % n] - corners[0]);
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (std::abs(normal[a]) > std::abs(normal[axis]))
+            axis = a;
+    // The other two axes, ordered so that the polygon turns counter-clockwise.
+    int ax = (axis + 1) % 3, ay = (axis + 2) % 3;
+    if (normal[axis] < 0)
+        std::swap(ax, ay);
+    std::vector<std::array<double, 2>> p(n);
+    for (std::size_t i = 0; i < n; ++i)
+        p[i] = {double(corners[i][ax] - corners[0][ax]), double(corners[i][ay] - corners[0][ay])};
+    const auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
+        return (p[b][0] - p[a][0]) * (p[c][1] - p[b][1]) -
+               (p[b][1] - p[a][1]) * (p[c][0] - p[b][0]);
+    };
+
+    std::vector<std::uint32_t> prev(n), next(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        prev[i] = std::uint32_t((i + n - 1) % n);
+        next[i] = std::uint32_t((i + 1) % n);
+    }
+    // Corners that are not strictly convex (reflex, or on a straight line)
+    // may block an ear; they go into the grid.
+    std::vector<char> blocking(n, 0);
+    std::size_t blockers = 0;
+    double lo[2] = {p[0][0], p[0][1]}, hi[2] = {p[0][0], p[0][1]};
+    for (std::size_t i = 0; i < n; ++i) {
+        blocking[i] = !(turn(prev[i], i, next[i]) > 0);
+        blockers += std::size_t(blocking[i]);
+        for (int a = 0; a < 2; ++a) {
+            lo[a] = std::min(lo[a], p[i][a]);
+            hi[a] = std::max(hi[a], p[i][a]);
+        }
+    }
+    const std::size_t side =
+        std::clamp<std::size_t>(std::size_t(std::sqrt(double(blockers))), 1, 512);
+    const double width[2] = {std::max(hi[0] - lo[0], 1e-300), std::max(hi[1] - lo[1], 1e-300)};
+    const auto cell_of = [&](double x, int a) {
+        const double c = (x - lo[a]) / width[a] * double(side);
+        return std::size_t(std::clamp(c, 0.0, double(side - 1)));
+    };
+    std::vector<std::vector<std::uint32_t>> grid(side * side);
+    for (std::size_t i = 0; i < n; ++i)
+        if (blocking[i])
+            grid[cell_of(p[i][1], 1) * side + cell_of(p[i][0], 0)].push_back(std::uint32_t(i));
+
+    std::vector<char> removed(n, 0);
+    // Long thin ears (a fan across the polygon) can still make it quadratic:
+    // past this many cells and corners looked at, it gives up (about a
+    // second) and the face is refused rather than read for minutes.
+    std::uint64_t work = 0;
+    const std::uint64_t max_work = std::max<std::uint64_t>(200'000'000, 64 * std::uint64_t(n));
+    const auto is_ear = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        if (!(turn(a, b, c) > 0))
+            return false;
+        const double x0 = std::min({p[a][0], p[b][0], p[c][0]}),
+                     x1 = std::max({p[a][0], p[b][0], p[c][0]});
+        const double y0 = std::min({p[a][1], p[b][1], p[c][1]}),
+                     y1 = std::max({p[a][1], p[b][1], p[c][1]});
+        for (std::size_t cy = cell_of(y0, 1); cy <= cell_of(y1, 1); ++cy)
+            for (std::size_t cx = cell_of(x0, 0); cx <= cell_of(x1, 0); ++cx) {
+                work += 1 + grid[cy * side + cx].size();
+                for (const std::uint32_t k : grid[cy * side + cx]) {
+                    if (removed[k] || !blocking[k] || k == a || k == b || k == c || p[k] == p[a] ||
+                        p[k] == p[b] || p[k] == p[c])
+                        continue;
+                    // Inside or on the ear's edges: the ear would cross the outline.
+                    if (turn(a, b, k) >= 0 && turn(b, c, k) >= 0 && turn(c, a, k) >= 0)
+                        return false;
+                }
+            }
+        return true;
+    };
+
+    // Candidate ears, the smallest first: clipping small ears walks along
+    // the outline (a ladder down a long strip), where walking round it from
+    // one corner fans out from it, each ear longer and its box over more of
+    // the grid. An entry is stale once its corner is clipped or queued anew.
+    using Candidate = std::tuple<double, std::uint32_t, std::uint32_t>; // size, corner, version
+    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue;
+    std::vector<std::uint32_t> version(n, 0);
+    const auto squared = [&](std::uint32_t i, std::uint32_t j) {
+        const double dx = p[i][0] - p[j][0], dy = p[i][1] - p[j][1];
+        return dx * dx + dy * dy;
+    };
+    const auto consider = [&](std::uint32_t v) {
+        ++version[v];
+        if (!blocking[v])
+            queue.emplace(
+                std::max({squared(prev[v], v), squared(v, next[v]), squared(next[v], prev[v])}), v,
+                version[v]);
+    };
+    for (std::uint32_t v = 0; v < n; ++v)
+        consider(v);
+    std::size_t left = n;
+    std::uint32_t live = 0; // a corner not clipped
+    bool requeued = false;
+    while (left > 3 && blockers > 0) {
+        if (work > max_work)
+            return {};
+        if (queue.empty()) {
+            // A corner whose ear held a reflex corner that has since turned
+            // convex was dropped: queue every corner again, once. No ear in
+            // all of them: the outline crosses itself, and is no simple
+            // polygon; the rest is split as a fan, and the solid check says
+            // what is wrong with it.
+            if (requeued)
+                break;
+            requeued = true;
+            work += left;
+            std::uint32_t v = live;
+            do {
+                consider(v);
+                v = next[v];
+            } while (v != live);
+            continue;
+        }
+        const auto [size, v, queued] = queue.top();
+        queue.pop();
+        if (removed[v] || queued != version[v])
+            continue;
+        const std::uint32_t a = prev[v], c = next[v];
+        if (!is_ear(a, v, c))
+            continue;
+        triangles.push_back({a, v, c});
+        removed[v] = 1;
+        next[a] = c;
+        prev[c] = a;
+        --left;
+        live = a;
+        requeued = false;
+        // In a simple polygon a neighbour of an ear only grows more convex;
+        // in one that crosses itself it may turn reflex.
+        for (const std::uint32_t k : {a, c}) {
+            const bool blocks = !(turn(prev[k], k, next[k]) > 0);
+            if (blocks && !blocking[k])
+                grid[cell_of(p[k][1], 1) * side + cell_of(p[k][0], 0)].push_back(k);
+            if (blocks != bool(blocking[k]))
+                blockers = blocks ? blockers + 1 : blockers - 1;
+            blocking[k] = char(blocks);
+            consider(k);
+        }
+    }
+    const std::uint32_t v = live;
+    // What is left is convex (no blocking corner) or no simple polygon: a fan.
+    for (std::uint32_t b = next[v]; left >= 3 && next[b] != v; b = next[b], --left)
+        triangles.push_back({v, b, next[b]});
+    return triangles;
+}
+
 std::shared_ptr<const TriangleMesh> read_obj_mesh(const std::filesystem::path& path, Real scale,
                                                   const Vec<3>& offset,
                                                   const std::string& scene_file,
@@ -133,18 +346,18 @@ parse_obj_mesh(std::string_view text, const std::filesystem::path& path, Real sc
     auto fail = [&](const std::string& why) {
         throw InputError(scene_file, field, fmt::format("\"{}\": {}", path.string(), why));
     };
-    const std::vector<VertexLine> vertex_lines = scan_obj_lines(text, fail);
+    const ObjLines lines = scan_obj_lines(text, fail);
 
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
     tinyobj::ObjReader reader;
     // From memory with no material text: an `mtllib` line opens nothing.
-    if (!reader.ParseFromString(std::string(text), "", config))
+    if (!reader.ParseFromString(lines.triangles_only, "", config))
         fail(fmt::format("not a readable OBJ file ({})", reader.Error()));
 
     const std::vector<tinyobj::real_t>& coordinates = reader.GetAttrib().vertices;
-    check_vertices(coordinates, scale, offset, vertex_lines, fail);
+    check_vertices(coordinates, scale, offset, lines.vertices, fail);
     std::vector<Vec<3>> vertices(coordinates.size() / 3);
     // Exactly repeated positions are one vertex: an exporter that writes a
     // corner once per face would otherwise leave every edge open.
@@ -176,6 +389,34 @@ parse_obj_mesh(std::string_view text, const std::filesystem::path& path, Real sc
             next += 3;
             triangles.push_back(t);
         }
+    }
+    // The polygons, split here. Corners repeated at once (after joining)
+    // are one corner.
+    for (const PolygonLine& polygon : lines.polygons) {
+        std::vector<std::uint32_t> ids;
+        std::vector<Vec<3>> corners;
+        for (const std::int64_t v : polygon.corners) {
+            if (v < 0 || std::uint64_t(v) >= vertices.size())
+                fail(fmt::format("line {}: the face names vertex {}, but the file has {} "
+                                 "vertices",
+                                 polygon.line, v + 1, vertices.size()));
+            const std::uint32_t id = joined[std::size_t(v)];
+            if (ids.empty() || id != ids.back()) {
+                ids.push_back(id);
+                corners.push_back(vertices[id]);
+            }
+        }
+        if (ids.size() > 1 && ids.front() == ids.back()) {
+            ids.pop_back();
+            corners.pop_back();
+        }
+        const std::vector<Triangle> split = split_polygon(corners);
+        if (split.empty() && corners.size() >= 3)
+            fail(fmt::format("line {}: a face of {} corners too irregular to split into "
+                             "triangles in reasonable time; split it in the modeller",
+                             polygon.line, corners.size()));
+        for (const Triangle& t : split)
+            triangles.push_back({ids[t[0]], ids[t[1]], ids[t[2]]});
     }
     if (triangles.empty()) {
         // The loader's warnings say what it skipped, e.g. faces of two vertices.

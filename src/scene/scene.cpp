@@ -106,6 +106,12 @@ void reject_duplicate_keys(const std::string& text, const std::string& file,
             "last); give it once");
 }
 
+// An ASCII digit. ::isdigit of a char above 127 (a byte of UTF-8 in a key)
+// is undefined behaviour.
+bool is_digit(char c) {
+    return c >= '0' && c <= '9';
+}
+
 // Sets root[path] = value for `--set path=value`, creating objects on the way.
 void apply_override(json& root, const Override& o, const std::string& file) {
     const std::string field = o.key + " (from --set)";
@@ -136,7 +142,7 @@ void apply_override(json& root, const Override& o, const std::string& file) {
             throw InputError(file, field, "empty segment in the key");
         if (node->is_array()) {
             // A numeric segment indexes a list: fluid.blocks.0.min=[...]
-            if (!std::all_of(segment.begin(), segment.end(), ::isdigit))
+            if (!std::all_of(segment.begin(), segment.end(), is_digit))
                 throw InputError(file, field,
                                  fmt::format("'{}' is a list; index it with a number",
                                              o.key.substr(0, begin - 1)));
@@ -172,7 +178,7 @@ void apply_override(json& root, const Override& o, const std::string& file) {
                 const std::string next =
                     o.key.substr(end + 1, next_end == std::string::npos ? std::string::npos
                                                                         : next_end - end - 1);
-                if (!next.empty() && std::all_of(next.begin(), next.end(), ::isdigit))
+                if (!next.empty() && std::all_of(next.begin(), next.end(), is_digit))
                     child = json::array();
             }
             node = &child;

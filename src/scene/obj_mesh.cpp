@@ -157,6 +157,212 @@ void check_vertices(const std::vector<tinyobj::real_t>& coordinates, Real scale,
 
 } // namespace
 
+namespace {
+
+// Ear clipping of one polygon (split_polygon below): the polygon projected
+// on a plane, its corners as a doubly linked ring, the corners that may
+// block an ear in a uniform grid, and the candidate ears in a queue.
+class EarClipper {
+  public:
+    explicit EarClipper(const std::vector<Vec<3>>& corners) : n_(corners.size()) {
+        project(corners);
+        prev_.resize(n_);
+        next_.resize(n_);
+        for (std::size_t i = 0; i < n_; ++i) {
+            prev_[i] = std::uint32_t((i + n_ - 1) % n_);
+            next_[i] = std::uint32_t((i + 1) % n_);
+        }
+        build_grid();
+        removed_.assign(n_, 0);
+        max_work_ = std::max<std::uint64_t>(200'000'000, 64 * std::uint64_t(n_));
+        version_.assign(n_, 0);
+    }
+
+    // The triangles, or none when the work ran past its bound.
+    std::vector<Triangle> clip() {
+        std::vector<Triangle> triangles;
+        triangles.reserve(n_ - 2);
+        for (std::uint32_t v = 0; v < n_; ++v)
+            consider(v);
+        std::size_t left = n_;
+        std::uint32_t live = 0; // a corner not clipped
+        bool requeued = false;
+        while (left > 3 && blockers_ > 0) {
+            if (work_ > max_work_)
+                return {};
+            if (queue_.empty()) {
+                // A corner whose ear held a reflex corner that has since
+                // turned convex was dropped: queue every corner again, once.
+                // No ear in all of them: the outline crosses itself, and is
+                // no simple polygon; the rest is split as a fan, and the
+                // solid check says what is wrong with it.
+                if (requeued)
+                    break;
+                requeued = true;
+                work_ += left;
+                std::uint32_t v = live;
+                do {
+                    consider(v);
+                    v = next_[v];
+                } while (v != live);
+                continue;
+            }
+            const auto [size, v, queued] = queue_.top();
+            queue_.pop();
+            if (removed_[v] || queued != version_[v])
+                continue;
+            const std::uint32_t a = prev_[v], c = next_[v];
+            if (!is_ear(a, v, c))
+                continue;
+            triangles.push_back({a, v, c});
+            removed_[v] = 1;
+            next_[a] = c;
+            prev_[c] = a;
+            --left;
+            live = a;
+            requeued = false;
+            for (const std::uint32_t k : {a, c})
+                update_corner(k);
+        }
+        const std::uint32_t v = live;
+        // What is left is convex (no blocking corner) or no simple polygon: a fan.
+        for (std::uint32_t b = next_[v]; left >= 3 && next_[b] != v; b = next_[b], --left)
+            triangles.push_back({v, b, next_[b]});
+        return triangles;
+    }
+
+  private:
+    // Projects the polygon on the plane its Newell normal is most nearly
+    // along, the axes ordered so that it turns counter-clockwise.
+    void project(const std::vector<Vec<3>>& corners) {
+        // Newell's normal, about the first corner so that far-off polygons
+        // keep their digits.
+        Vec<3> normal(0);
+        for (std::size_t i = 0; i < n_; ++i)
+            normal += glm::cross(corners[i] - corners[0], corners[(i + 1) % n_] - corners[0]);
+        int axis = 0;
+        for (int a = 1; a < 3; ++a)
+            if (std::abs(normal[a]) > std::abs(normal[axis]))
+                axis = a;
+        int ax = (axis + 1) % 3, ay = (axis + 2) % 3;
+        if (normal[axis] < 0)
+            std::swap(ax, ay);
+        p_.resize(n_);
+        for (std::size_t i = 0; i < n_; ++i)
+            p_[i] = {double(corners[i][ax] - corners[0][ax]),
+                     double(corners[i][ay] - corners[0][ay])};
+    }
+
+    double turn(std::size_t a, std::size_t b, std::size_t c) const {
+        return (p_[b][0] - p_[a][0]) * (p_[c][1] - p_[b][1]) -
+               (p_[b][1] - p_[a][1]) * (p_[c][0] - p_[b][0]);
+    }
+
+    // Corners that are not strictly convex (reflex, or on a straight line)
+    // may block an ear; they go into the grid.
+    void build_grid() {
+        blocking_.assign(n_, 0);
+        for (int a = 0; a < 2; ++a)
+            lo_[a] = hi_[a] = p_[0][a];
+        for (std::size_t i = 0; i < n_; ++i) {
+            blocking_[i] = !(turn(prev_[i], i, next_[i]) > 0);
+            blockers_ += std::size_t(blocking_[i]);
+            for (int a = 0; a < 2; ++a) {
+                lo_[a] = std::min(lo_[a], p_[i][a]);
+                hi_[a] = std::max(hi_[a], p_[i][a]);
+            }
+        }
+        side_ = std::clamp<std::size_t>(std::size_t(std::sqrt(double(blockers_))), 1, 512);
+        for (int a = 0; a < 2; ++a)
+            width_[a] = std::max(hi_[a] - lo_[a], 1e-300);
+        grid_.assign(side_ * side_, {});
+        for (std::size_t i = 0; i < n_; ++i)
+            if (blocking_[i])
+                grid_[cell(i)].push_back(std::uint32_t(i));
+    }
+
+    std::size_t cell_of(double x, int a) const {
+        const double c = (x - lo_[a]) / width_[a] * double(side_);
+        return std::size_t(std::clamp(c, 0.0, double(side_ - 1)));
+    }
+    std::size_t cell(std::size_t i) const {
+        return cell_of(p_[i][1], 1) * side_ + cell_of(p_[i][0], 0);
+    }
+
+    // a b c is an ear: convex, and no blocking corner inside or on it.
+    bool is_ear(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        if (!(turn(a, b, c) > 0))
+            return false;
+        const double x0 = std::min({p_[a][0], p_[b][0], p_[c][0]}),
+                     x1 = std::max({p_[a][0], p_[b][0], p_[c][0]});
+        const double y0 = std::min({p_[a][1], p_[b][1], p_[c][1]}),
+                     y1 = std::max({p_[a][1], p_[b][1], p_[c][1]});
+        for (std::size_t cy = cell_of(y0, 1); cy <= cell_of(y1, 1); ++cy)
+            for (std::size_t cx = cell_of(x0, 0); cx <= cell_of(x1, 0); ++cx) {
+                const auto& in_cell = grid_[cy * side_ + cx];
+                work_ += 1 + in_cell.size();
+                for (const std::uint32_t k : in_cell) {
+                    if (removed_[k] || !blocking_[k] || k == a || k == b || k == c ||
+                        p_[k] == p_[a] || p_[k] == p_[b] || p_[k] == p_[c])
+                        continue;
+                    // Inside or on the ear's edges: the ear would cross the outline.
+                    if (turn(a, b, k) >= 0 && turn(b, c, k) >= 0 && turn(c, a, k) >= 0)
+                        return false;
+                }
+            }
+        return true;
+    }
+
+    double squared(std::uint32_t i, std::uint32_t j) const {
+        const double dx = p_[i][0] - p_[j][0], dy = p_[i][1] - p_[j][1];
+        return dx * dx + dy * dy;
+    }
+
+    // Queues corner v's ear, if v is convex, by its longest side.
+    void consider(std::uint32_t v) {
+        ++version_[v];
+        if (!blocking_[v])
+            queue_.emplace(
+                std::max({squared(prev_[v], v), squared(v, next_[v]), squared(next_[v], prev_[v])}),
+                v, version_[v]);
+    }
+
+    // After an ear is clipped beside k. In a simple polygon a neighbour of
+    // an ear only grows more convex; in one that crosses itself it may turn
+    // reflex.
+    void update_corner(std::uint32_t k) {
+        const bool blocks = !(turn(prev_[k], k, next_[k]) > 0);
+        if (blocks && !blocking_[k])
+            grid_[cell(k)].push_back(k);
+        if (blocks != bool(blocking_[k]))
+            blockers_ = blocks ? blockers_ + 1 : blockers_ - 1;
+        blocking_[k] = char(blocks);
+        consider(k);
+    }
+
+    std::size_t n_;
+    std::vector<std::array<double, 2>> p_;
+    std::vector<std::uint32_t> prev_, next_;
+    std::vector<char> blocking_, removed_;
+    std::size_t blockers_ = 0;
+    double lo_[2] = {}, hi_[2] = {}, width_[2] = {};
+    std::size_t side_ = 1;
+    std::vector<std::vector<std::uint32_t>> grid_;
+    // Long thin ears (a fan across the polygon) can still make it quadratic:
+    // past this many cells and corners looked at, it gives up (about a
+    // second) and the face is refused rather than read for minutes.
+    std::uint64_t work_ = 0, max_work_ = 0;
+    // Candidate ears, the smallest first: clipping small ears walks along
+    // the outline (a ladder down a long strip), where walking round it from
+    // one corner fans out from it, each ear longer and its box over more of
+    // the grid. An entry is stale once its corner is clipped or queued anew.
+    using Candidate = std::tuple<double, std::uint32_t, std::uint32_t>; // size, corner, version
+    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue_;
+    std::vector<std::uint32_t> version_;
+};
+
+} // namespace
+
 // Splits one polygon into triangles by ear clipping (Meisters' two-ears
 // theorem: a simple polygon of more than three corners has two
 // non-overlapping ears), in the plane the polygon's Newell normal is most
@@ -165,164 +371,9 @@ void check_vertices(const std::vector<tinyobj::real_t>& coordinates, Real scale,
 // n ear tests of a few grid cells each, where testing every corner against
 // every ear (tinyobjloader's way) took minutes for 200,000 corners.
 std::vector<Triangle> split_polygon(const std::vector<Vec<3>>& corners) {
-    std::vector<Triangle> triangles;
-    const std::size_t n = corners.size();
-    if (n < 3)
-        return triangles;
-    triangles.reserve(n - 2);
-    // Newell's normal, about the first corner so that far-off polygons keep
-    // their digits.
-    Vec<3> normal(0);
-    for (std::size_t i = 0; i < n; ++i)
-        normal += glm::cross(corners[i] - corners[0], corners[(i + 1) % n] - corners[0]);
-    int axis = 0;
-    for (int a = 1; a < 3; ++a)
-        if (std::abs(normal[a]) > std::abs(normal[axis]))
-            axis = a;
-    // The other two axes, ordered so that the polygon turns counter-clockwise.
-    int ax = (axis + 1) % 3, ay = (axis + 2) % 3;
-    if (normal[axis] < 0)
-        std::swap(ax, ay);
-    std::vector<std::array<double, 2>> p(n);
-    for (std::size_t i = 0; i < n; ++i)
-        p[i] = {double(corners[i][ax] - corners[0][ax]), double(corners[i][ay] - corners[0][ay])};
-    const auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
-        return (p[b][0] - p[a][0]) * (p[c][1] - p[b][1]) -
-               (p[b][1] - p[a][1]) * (p[c][0] - p[b][0]);
-    };
-
-    std::vector<std::uint32_t> prev(n), next(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        prev[i] = std::uint32_t((i + n - 1) % n);
-        next[i] = std::uint32_t((i + 1) % n);
-    }
-    // Corners that are not strictly convex (reflex, or on a straight line)
-    // may block an ear; they go into the grid.
-    std::vector<char> blocking(n, 0);
-    std::size_t blockers = 0;
-    double lo[2] = {p[0][0], p[0][1]}, hi[2] = {p[0][0], p[0][1]};
-    for (std::size_t i = 0; i < n; ++i) {
-        blocking[i] = !(turn(prev[i], i, next[i]) > 0);
-        blockers += std::size_t(blocking[i]);
-        for (int a = 0; a < 2; ++a) {
-            lo[a] = std::min(lo[a], p[i][a]);
-            hi[a] = std::max(hi[a], p[i][a]);
-        }
-    }
-    const std::size_t side =
-        std::clamp<std::size_t>(std::size_t(std::sqrt(double(blockers))), 1, 512);
-    const double width[2] = {std::max(hi[0] - lo[0], 1e-300), std::max(hi[1] - lo[1], 1e-300)};
-    const auto cell_of = [&](double x, int a) {
-        const double c = (x - lo[a]) / width[a] * double(side);
-        return std::size_t(std::clamp(c, 0.0, double(side - 1)));
-    };
-    std::vector<std::vector<std::uint32_t>> grid(side * side);
-    for (std::size_t i = 0; i < n; ++i)
-        if (blocking[i])
-            grid[cell_of(p[i][1], 1) * side + cell_of(p[i][0], 0)].push_back(std::uint32_t(i));
-
-    std::vector<char> removed(n, 0);
-    // Long thin ears (a fan across the polygon) can still make it quadratic:
-    // past this many cells and corners looked at, it gives up (about a
-    // second) and the face is refused rather than read for minutes.
-    std::uint64_t work = 0;
-    const std::uint64_t max_work = std::max<std::uint64_t>(200'000'000, 64 * std::uint64_t(n));
-    const auto is_ear = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-        if (!(turn(a, b, c) > 0))
-            return false;
-        const double x0 = std::min({p[a][0], p[b][0], p[c][0]}),
-                     x1 = std::max({p[a][0], p[b][0], p[c][0]});
-        const double y0 = std::min({p[a][1], p[b][1], p[c][1]}),
-                     y1 = std::max({p[a][1], p[b][1], p[c][1]});
-        for (std::size_t cy = cell_of(y0, 1); cy <= cell_of(y1, 1); ++cy)
-            for (std::size_t cx = cell_of(x0, 0); cx <= cell_of(x1, 0); ++cx) {
-                work += 1 + grid[cy * side + cx].size();
-                for (const std::uint32_t k : grid[cy * side + cx]) {
-                    if (removed[k] || !blocking[k] || k == a || k == b || k == c || p[k] == p[a] ||
-                        p[k] == p[b] || p[k] == p[c])
-                        continue;
-                    // Inside or on the ear's edges: the ear would cross the outline.
-                    if (turn(a, b, k) >= 0 && turn(b, c, k) >= 0 && turn(c, a, k) >= 0)
-                        return false;
-                }
-            }
-        return true;
-    };
-
-    // Candidate ears, the smallest first: clipping small ears walks along
-    // the outline (a ladder down a long strip), where walking round it from
-    // one corner fans out from it, each ear longer and its box over more of
-    // the grid. An entry is stale once its corner is clipped or queued anew.
-    using Candidate = std::tuple<double, std::uint32_t, std::uint32_t>; // size, corner, version
-    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue;
-    std::vector<std::uint32_t> version(n, 0);
-    const auto squared = [&](std::uint32_t i, std::uint32_t j) {
-        const double dx = p[i][0] - p[j][0], dy = p[i][1] - p[j][1];
-        return dx * dx + dy * dy;
-    };
-    const auto consider = [&](std::uint32_t v) {
-        ++version[v];
-        if (!blocking[v])
-            queue.emplace(
-                std::max({squared(prev[v], v), squared(v, next[v]), squared(next[v], prev[v])}), v,
-                version[v]);
-    };
-    for (std::uint32_t v = 0; v < n; ++v)
-        consider(v);
-    std::size_t left = n;
-    std::uint32_t live = 0; // a corner not clipped
-    bool requeued = false;
-    while (left > 3 && blockers > 0) {
-        if (work > max_work)
-            return {};
-        if (queue.empty()) {
-            // A corner whose ear held a reflex corner that has since turned
-            // convex was dropped: queue every corner again, once. No ear in
-            // all of them: the outline crosses itself, and is no simple
-            // polygon; the rest is split as a fan, and the solid check says
-            // what is wrong with it.
-            if (requeued)
-                break;
-            requeued = true;
-            work += left;
-            std::uint32_t v = live;
-            do {
-                consider(v);
-                v = next[v];
-            } while (v != live);
-            continue;
-        }
-        const auto [size, v, queued] = queue.top();
-        queue.pop();
-        if (removed[v] || queued != version[v])
-            continue;
-        const std::uint32_t a = prev[v], c = next[v];
-        if (!is_ear(a, v, c))
-            continue;
-        triangles.push_back({a, v, c});
-        removed[v] = 1;
-        next[a] = c;
-        prev[c] = a;
-        --left;
-        live = a;
-        requeued = false;
-        // In a simple polygon a neighbour of an ear only grows more convex;
-        // in one that crosses itself it may turn reflex.
-        for (const std::uint32_t k : {a, c}) {
-            const bool blocks = !(turn(prev[k], k, next[k]) > 0);
-            if (blocks && !blocking[k])
-                grid[cell_of(p[k][1], 1) * side + cell_of(p[k][0], 0)].push_back(k);
-            if (blocks != bool(blocking[k]))
-                blockers = blocks ? blockers + 1 : blockers - 1;
-            blocking[k] = char(blocks);
-            consider(k);
-        }
-    }
-    const std::uint32_t v = live;
-    // What is left is convex (no blocking corner) or no simple polygon: a fan.
-    for (std::uint32_t b = next[v]; left >= 3 && next[b] != v; b = next[b], --left)
-        triangles.push_back({v, b, next[b]});
-    return triangles;
+    if (corners.size() < 3)
+        return {};
+    return EarClipper(corners).clip();
 }
 
 std::shared_ptr<const TriangleMesh> read_obj_mesh(const std::filesystem::path& path, Real scale,

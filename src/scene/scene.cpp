@@ -10,6 +10,7 @@
 #include "scene/scene_paths.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
+#include "sph/single_precision/single_passes.hpp"
 #include "sph/solvers/solver.hpp"
 #include "sph/time_step.hpp"
 
@@ -806,11 +807,13 @@ Derived derive(const Scene& s) {
     const double ratio = s.fluid.smoothing_ratio.value_or(default_smoothing_ratio(dim));
     d.h = s.fluid.smoothing_length.value_or(ratio * s.fluid.spacing);
     d.kernel = derive_kernel(s);
-    // auto: single in 2D where it can run. In 3D the 27 cells around a
-    // cell hold six candidates per neighbour, and single measured even with
-    // double for 27% more memory (docs/solvers.md, "Single precision").
+    // auto: single in 2D where it can run and the processor runs its
+    // passes 8 floats wide or more (single_passes_pay). In 3D the 27 cells
+    // around a cell hold six candidates per neighbour, and single measured
+    // 1.1x double for 27% more memory (docs/solvers.md, "Single precision").
     d.precision = s.solver.precision ? *s.solver.precision
-                  : dim == 2 && single_precision_obstacle(s, d.kernel).empty()
+                  : dim == 2 && single_precision_obstacle(s, d.kernel).empty() &&
+                          single_passes_pay()
                       ? Precision::single
                       : Precision::double_precision;
     d.walls = s.solver.walls.value_or(solver_capabilities(s.solver.name).wall_particles

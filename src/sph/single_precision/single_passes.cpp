@@ -74,6 +74,18 @@ std::string_view simd_variant() {
     return variants[std::size(variants) - 1];
 }
 
+bool single_passes_pay() {
+    const std::string_view variant = simd_variant();
+    if (variant == "native") {
+#ifdef __AVX2__
+        return true;
+#else
+        return false;
+#endif
+    }
+    return variant != "baseline";
+}
+
 template <int D>
 std::unique_ptr<SinglePasses<D>> make_single_passes() {
     [[maybe_unused]] const std::string_view variant = simd_variant();

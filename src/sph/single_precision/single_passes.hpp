@@ -65,6 +65,14 @@ bool simd_variant_runs(std::string_view variant);
 // binary lacks or this processor cannot run.
 std::string_view simd_variant();
 
+// Whether the passes this processor gets (simd_variant()) are at least 8
+// floats wide: AVX2 or AVX-512, or a native build for a processor with AVX2.
+// solver.precision "auto" chooses single only then. Measured on the flows of
+// sphclip_bench_flow (docs/benchmarks.md, "Single precision on each
+// processor"): 4 floats wide (SSE, the baseline) the cells' passes run at
+// half the speed of the double-precision lists, 8 or 16 wide at 1.5-1.9x.
+bool single_passes_pay();
+
 template <int D>
 std::unique_ptr<SinglePasses<D>> make_single_passes();
 

@@ -811,11 +811,11 @@ Derived derive(const Scene& s) {
     // passes 8 floats wide or more (single_passes_pay). In 3D the 27 cells
     // around a cell hold six candidates per neighbour, and single measured
     // 1.1x double for 27% more memory (docs/solvers.md, "Single precision").
-    d.precision = s.solver.precision ? *s.solver.precision
-                  : dim == 2 && single_precision_obstacle(s, d.kernel).empty() &&
-                          single_passes_pay()
-                      ? Precision::single
-                      : Precision::double_precision;
+    d.precision =
+        s.solver.precision ? *s.solver.precision
+        : dim == 2 && single_precision_obstacle(s, d.kernel).empty() && single_passes_pay()
+            ? Precision::single
+            : Precision::double_precision;
     d.walls = s.solver.walls.value_or(solver_capabilities(s.solver.name).wall_particles
                                           ? WallModel::particles
                                           : WallModel::reflect);

@@ -98,6 +98,11 @@ TEST_CASE("run.json records the build, the machine, UTC times and the final part
     CHECK(started <= ended); // ISO 8601 sorts as text
 
     CHECK(run.at("threads") == 2);
+    // --threads 2: one count, all the steps.
+    REQUIRE(run.at("thread_counts").size() == 1);
+    CHECK(run.at("thread_counts")[0].at("threads") == 2);
+    CHECK(run.at("thread_counts")[0].at("chosen_by") == "--threads");
+    CHECK(run.at("thread_counts")[0].at("steps") == run.at("steps"));
     CHECK(run.at("particles") == 480);
     const auto particles = column(tmp / "a" / "stats.csv", "particles");
     CHECK(run.at("final_particles").get<std::size_t>() == std::stoul(particles.back()));
@@ -200,4 +205,35 @@ TEST_CASE("A re-run draws with the recorded GL backend, to the same frames",
     CHECK(read_text(tmp / "b" / "frames" / "frame_00001.png") ==
           read_text(tmp / "a" / "frames" / "frame_00001.png"));
     CHECK(!fs::exists(tmp / "b" / "clip.mp4"));
+}
+
+TEST_CASE("without --threads the run measures its thread count and records each count's steps",
+          "[cli][run_json]") {
+    TempFolder tmp;
+    const auto result = run_sphclip(tmp,
+                                    {"run", emitter_scene, "--out", "a", "--no-png", "--no-mp4",
+                                     "--duration", "0.1", "--quiet"},
+                                    tmp.path());
+    INFO(result.output);
+    REQUIRE(result.exit_code == 0);
+    const json run = read_json(tmp / "a" / "run.json");
+    const json& counts = run.at("thread_counts");
+    REQUIRE(!counts.empty());
+    std::uint64_t steps = 0;
+    for (const auto& c : counts) {
+        const int threads = c.at("threads");
+        CHECK(threads >= 1);
+        CHECK(threads <= run.at("threads").get<int>());
+        // One core: nothing to choose; otherwise measured.
+        CHECK(c.at("chosen_by") == (run.at("threads") == 1 ? "all cores" : "measurement"));
+        steps += c.at("steps").get<std::uint64_t>();
+    }
+    CHECK(steps == run.at("steps").get<std::uint64_t>());
+    // Its re-run measures again rather than fixing the recorded most.
+    const auto rerun_result = run_sphclip(
+        tmp, {"run", "a/run.json", "--out", "b", "--duration", "0.05", "--quiet"}, tmp.path());
+    INFO(rerun_result.output);
+    REQUIRE(rerun_result.exit_code == 0);
+    CHECK(read_json(tmp / "b" / "run.json").at("thread_counts")[0].at("chosen_by") ==
+          run.at("thread_counts")[0].at("chosen_by"));
 }

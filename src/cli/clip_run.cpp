@@ -11,6 +11,7 @@
 #include "output/stats_csv.hpp"
 #include "output/surface_export.hpp"
 #include "parallel/rank_partition.hpp"
+#include "parallel/thread_count_tuner.hpp"
 #include "parallel/world.hpp"
 #include "render/render_sink.hpp"
 #include "scene/scene_setup.hpp"
@@ -168,6 +169,10 @@ class ClipRun {
             fields_ |= sink->fields();
         fields_.pressure = parallel::leader_says(fields_.pressure);
         sim_.set_output_fields(fields_);
+        // No --threads: the count is measured as the run goes. Over MPI ranks
+        // each rank keeps all its cores (the ranks step in lockstep).
+        if (options_.threads == 0 && parallel::size() == 1 && omp_get_max_threads() > 1)
+            tuner_.emplace(omp_get_max_threads());
         if (!leader_)
             return;
         record_.path = folder_ / "run.json";
@@ -324,7 +329,7 @@ class ClipRun {
         // Over MPI ranks the ranks decide together, between the same steps.
         bool stop = false;
         while (!sim_.reached(time) && !(stop = parallel::any_rank(StopSignals::received() != 0)))
-            sim_.step_toward(time);
+            step_toward(time);
         if (!stop)
             stop = parallel::any_rank(StopSignals::received() != 0);
         if (stop)
@@ -332,6 +337,20 @@ class ClipRun {
         sim_.update_fields();
         simulate_seconds_.push_back(seconds_since(start));
         return true;
+    }
+
+    // One step, with the thread count the tuner chooses when the user gave
+    // none (parallel/thread_count_tuner.hpp).
+    void step_toward(double time) {
+        if (!tuner_) {
+            sim_.step_toward(time);
+            return;
+        }
+        omp_set_num_threads(tuner_->threads());
+        const std::uint64_t before = sim_.particle_steps();
+        const auto start = Clock::now();
+        sim_.step_toward(time);
+        tuner_->record(seconds_since(start), sim_.particle_steps() - before);
     }
 
     // Counters, statistics and the particle fields some sink reads.
@@ -658,6 +677,7 @@ class ClipRun {
         for (std::size_t k = 0; k < time_step_limit_names.size(); ++k)
             limits[std::string(time_step_limit_names[k])] = sim_.time_step_limits()[k];
         record_.document["time_step_limits"] = limits;
+        record_.document["thread_counts"] = thread_counts_json();
         record_.document["timings"] = {{"total",
                                         {{"simulate_s", simulate_total},
                                          {"render_s", total.render_s},
@@ -670,12 +690,30 @@ class ClipRun {
 
     double wall() const { return seconds_since(start_); }
 
+    // run.json "thread_counts": the steps at each thread count.
+    json thread_counts_json() const {
+        json counts = json::array();
+        if (!tuner_) {
+            counts.push_back({{"threads", omp_get_max_threads()},
+                              {"steps", sim_.steps()},
+                              {"chosen_by", options_.threads > 0 ? "--threads" : "all cores"}});
+            return counts;
+        }
+        for (const auto& use : tuner_->uses())
+            counts.push_back({{"threads", use.threads},
+                              {"steps", use.steps},
+                              {"seconds", use.seconds},
+                              {"chosen_by", "measurement"}});
+        return counts;
+    }
+
     const bool leader_ = parallel::leader(); // rank 0, or the only process
     const Scene& scene_;
     const fs::path folder_;
     const RunOptions& options_;
     const Derived derived_;
     Simulation<D> sim_;
+    std::optional<parallel::ThreadCountTuner> tuner_; // none: a fixed thread count
     const std::uint64_t frames_;
     std::vector<std::unique_ptr<FrameSink>> sinks_;
     RenderSink* render_ = nullptr; // in sinks_, when frames are drawn

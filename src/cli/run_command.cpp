@@ -91,7 +91,13 @@ Scene rerun_scene(const fs::path& file, const nlohmann::json& document, RunOptio
     if (options.scene_file_absolute == "unknown")
         options.scene_file_absolute.clear();
 
-    if (options.threads == 0)
+    // The recorded thread count when the user fixed it (--threads); a count
+    // that was measured as the run went is measured again (the bits are the
+    // same for any count).
+    const auto counts = document.find("thread_counts");
+    const bool measured = counts != document.end() && counts->is_array() && !counts->empty() &&
+                          counts->front().value("chosen_by", "") == "measurement";
+    if (options.threads == 0 && !measured)
         if (const auto threads = document.find("threads");
             threads != document.end() && threads->is_number_integer() && *threads > 0)
             options.threads = threads->get<int>();

@@ -19,11 +19,12 @@
 //
 // A program that prints a table, not a timed test (docs/benchmarks.md).
 //
-//   sphclip_bench_flow [--tiny] [--cases NAME,NAME] [--threads 1,2]
+//   sphclip_bench_flow [--tiny] [--cases NAME,NAME] [--threads 1,2,auto]
 //                      [--precision single,double] [--reorder N,N] [--steps N]
 //                      [--rounds N] [--load N] [--scenes DIR] [--csv FILE]
 
 #include "bench_support.hpp"
+#include "parallel/thread_count_tuner.hpp"
 #include "scene/scene_setup.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
@@ -38,6 +39,7 @@
 #include <fstream>
 #include <map>
 #include <omp.h>
+#include <optional>
 #include <string>
 #include <sys/wait.h>
 #include <thread>
@@ -124,8 +126,9 @@ struct Config {
     int threads = 1;
     int reorder = -1; // -1: the scene's
     std::string label() const {
-        return reorder < 0 ? fmt::format("{} x{}", precision, threads)
-                           : fmt::format("{} x{} reorder{}", precision, threads, reorder);
+        const std::string count = threads > 0 ? fmt::format("x{}", threads) : "auto";
+        return reorder < 0 ? fmt::format("{} {}", precision, count)
+                           : fmt::format("{} {} reorder{}", precision, count, reorder);
     }
 };
 
@@ -144,17 +147,34 @@ std::vector<Override> with_config(std::vector<Override> o, const Config& c) {
     return o;
 }
 
+// threads 0: `sphclip run`'s default, the count chosen as the run goes
+// (parallel/thread_count_tuner.hpp), from all cores.
 template <int D>
 Sample time_steps(const Scene& scene, const State<D>& start, int threads, int steps) {
-    omp_set_num_threads(threads);
+    const int cores = int(std::thread::hardware_concurrency());
+    omp_set_num_threads(threads > 0 ? threads : cores);
     auto sim = make_simulation<D>(scene);
     sim.state() = start;
     sim.step(); // untimed: every array and list sized for this state
     const auto before = sim.stage_times().entries();
     const std::uint64_t particle_steps_before = sim.particle_steps();
+    std::optional<parallel::ThreadCountTuner> tuner;
+    if (threads == 0)
+        tuner.emplace(cores);
     const auto t0 = std::chrono::steady_clock::now();
-    for (int k = 0; k < steps; ++k)
+    for (int k = 0; k < steps; ++k) {
+        if (!tuner) {
+            sim.step();
+            continue;
+        }
+        omp_set_num_threads(tuner->threads());
+        const std::uint64_t done = sim.particle_steps();
+        const auto step_start = std::chrono::steady_clock::now();
         sim.step();
+        tuner->record(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count(),
+            sim.particle_steps() - done);
+    }
     Sample s;
     s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     s.particle_steps = sim.particle_steps() - particle_steps_before;
@@ -207,7 +227,7 @@ int usage() {
     for (const auto& c : all_cases())
         names += (names.empty() ? "" : ",") + c.name;
     fmt::print(stderr,
-               "usage: sphclip_bench_flow [--tiny] [--cases {}] [--threads 1,2] [--precision "
+               "usage: sphclip_bench_flow [--tiny] [--cases {}] [--threads 1,2,auto] [--precision "
                "single,double] [--reorder N,N] [--steps N] [--rounds N] [--load N] [--scenes DIR] "
                "[--csv FILE]\n",
                names);
@@ -313,7 +333,7 @@ int main(int argc, char** argv) {
         else if (arg == "--threads" && has_value) {
             thread_counts.clear();
             for (const auto& s : split_list(argv[++k]))
-                thread_counts.push_back(std::atoi(s.c_str()));
+                thread_counts.push_back(s == "auto" ? 0 : std::atoi(s.c_str())); // 0: tuned
         } else if (arg == "--reorder" && has_value) {
             reorders.clear();
             for (const auto& s : split_list(argv[++k]))

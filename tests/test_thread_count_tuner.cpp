@@ -1,0 +1,104 @@
+// The run's thread count by measurement (src/parallel/thread_count_tuner.*):
+// fed step times from a model machine, it settles on the count that costs
+// least, finds a competing job that starts mid-run, and leaves a single core
+// alone.
+#include "parallel/thread_count_tuner.hpp"
+
+#include <catch2/catch.hpp>
+#include <functional>
+#include <map>
+
+using sph::parallel::ThreadCountTuner;
+
+namespace {
+
+// Steps `count` steps of 1,000 particles, each costing `cost(threads, k)`
+// seconds per particle-step; returns the steps taken at each thread count.
+std::map<int, std::uint64_t> run(ThreadCountTuner& tuner, int count,
+                                 const std::function<double(int, int)>& cost, int first = 0) {
+    std::map<int, std::uint64_t> steps;
+    for (int k = first; k < first + count; ++k) {
+        const int threads = tuner.threads();
+        tuner.record(1000 * cost(threads, k), 1000);
+        ++steps[threads];
+    }
+    return steps;
+}
+
+// A step of 1,000 particle-steps at 1 us each (1 ms): 250 steps a window
+// of the count kept, 100 a try.
+constexpr double one_thread = 1e-6;
+
+} // namespace
+
+TEST_CASE("on a quiet machine the tuner keeps every core, trying fewer less and less often",
+          "[parallel]") {
+    ThreadCountTuner tuner(2);
+    CHECK(tuner.threads() == 2);
+    // 2 threads: 1.7x (the 2D flows on the quiet machine).
+    const auto steps =
+        run(tuner, 40000, [](int t, int) { return one_thread / (t == 2 ? 1.7 : 1); });
+    CHECK(tuner.threads() == 2);
+    CHECK(tuner.changes() == 0);
+    // The tries at 1 thread: a short window each, spaced 4, 8, ... 128 windows.
+    CHECK(steps.at(1) > 0);
+    CHECK(double(steps.at(1)) / double(steps.at(2)) < 0.05);
+}
+
+TEST_CASE("with a busy process on the machine the tuner steps with fewer threads", "[parallel]") {
+    ThreadCountTuner tuner(2);
+    // 2 threads at 0.3x of 1 (one busy process on 2 cores, measured).
+    const auto steps =
+        run(tuner, 40000, [](int t, int) { return t == 2 ? one_thread / 0.3 : one_thread; });
+    CHECK(tuner.threads() == 1);
+    CHECK(tuner.changes() == 1);
+    // Found after the first two windows; 2 threads tried again now and then.
+    CHECK(double(steps.at(2)) / double(steps.at(1)) < 0.05);
+}
+
+TEST_CASE("a competing job that starts mid-run is found within a few windows", "[parallel]") {
+    ThreadCountTuner tuner(2);
+    const auto busy_from = 20000;
+    const auto cost = [&](int t, int k) {
+        if (k < busy_from)
+            return one_thread / (t == 2 ? 1.7 : 1);
+        return t == 2 ? one_thread / 0.3 : one_thread;
+    };
+    run(tuner, busy_from, cost);
+    REQUIRE(tuner.threads() == 2);
+    // Ten windows after the job starts: the window that got dearer by more
+    // than the slowdown set off a try at once.
+    run(tuner, 2500, cost, busy_from);
+    CHECK(tuner.threads() == 1);
+    // And when the job ends, 2 threads come back at a later try.
+    const auto quiet_again = [](int t, int) {
+        return one_thread / (t == 2 ? 1.7 : 1);
+    };
+    run(tuner, 40000, quiet_again, busy_from + 2500);
+    CHECK(tuner.threads() == 2);
+}
+
+TEST_CASE("the tuner tries only the counts on its ladder and never more than the most",
+          "[parallel]") {
+    SECTION("one core: always 1") {
+        ThreadCountTuner tuner(1);
+        run(tuner, 5000, [](int, int) { return one_thread; });
+        CHECK(tuner.threads() == 1);
+        REQUIRE(tuner.uses().size() == 1);
+        CHECK(tuner.uses()[0].threads == 1);
+        CHECK(tuner.uses()[0].steps == 5000);
+    }
+    SECTION("8 cores, best at 4: 8, 4, 2, 1 only, settling on 4") {
+        ThreadCountTuner tuner(8);
+        const auto cost = [](int t, int) {
+            REQUIRE((t == 8 || t == 4 || t == 2 || t == 1));
+            return one_thread / (t == 8 ? 2.5 : t == 4 ? 3.2 : t == 2 ? 1.9 : 1);
+        };
+        run(tuner, 40000, cost);
+        CHECK(tuner.threads() == 4);
+        std::uint64_t total = 0;
+        for (const auto& use : tuner.uses())
+            total += use.steps;
+        CHECK(total == 40000);
+    }
+}

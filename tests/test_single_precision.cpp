@@ -195,7 +195,20 @@ TEST_CASE("the widest variant this processor runs is the default; SPHCLIP_SIMD p
 }
 
 TEST_CASE("solver.precision: auto picks single where it can run, single says why not", "[single]") {
-    CHECK(derive(default_scene({{"solver.name", "wcsph"}})).precision == Precision::single);
+    // 2D: single where the processor runs the passes 8 floats wide or more.
+    for (const std::string_view variant : simd_variants()) {
+        if (!simd_variant_runs(variant))
+            continue;
+        const PinnedVariant pinned(variant);
+        INFO("variant " << variant);
+        // A portable build's baseline is 4 floats wide (SSE): double there.
+        if (variant == "baseline")
+            CHECK_FALSE(single_passes_pay());
+        if (variant == "avx2" || variant == "avx512")
+            CHECK(single_passes_pay());
+        CHECK(derive(default_scene({{"solver.name", "wcsph"}})).precision ==
+              (single_passes_pay() ? Precision::single : Precision::double_precision));
+    }
     // 3D: single only when asked for (even speed, more memory).
     CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"dimension", "3"}})).precision ==
           Precision::double_precision);

@@ -26,6 +26,7 @@
 #include "bench_support.hpp"
 #include "parallel/thread_count_tuner.hpp"
 #include "scene/scene_setup.hpp"
+#include "sph/single_precision/single_passes.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
 
@@ -375,10 +376,11 @@ int main(int argc, char** argv) {
                 configs.push_back({p, t, r});
 
     const std::string header = fmt::format(
-        "{}, {} logical CPUs, compiler {}; OMP_WAIT_POLICY {}, GOMP_SPINCOUNT {}; competing "
-        "busy processes: {}; load average at start {}",
+        "{}, {} logical CPUs, compiler {}, single-precision passes {}; OMP_WAIT_POLICY {}, "
+        "GOMP_SPINCOUNT {}; competing busy processes: {}; load average at start {}",
         cpu_model(), std::thread::hardware_concurrency(), __VERSION__,
-        environment("OMP_WAIT_POLICY"), environment("GOMP_SPINCOUNT"), load, load_average());
+        fmt::format("{} ({})", simd_variant(), simd_instructions()), environment("OMP_WAIT_POLICY"),
+        environment("GOMP_SPINCOUNT"), load, load_average());
     fmt::print("flow benchmark: {}\n{} rounds, configurations interleaved; adaptive steps as "
                "`sphclip run` takes them; particles are fluid particles (walls extra)\n",
                header, rounds);

@@ -34,6 +34,7 @@
 
 #include "bench_support.hpp"
 #include "scene/scene_setup.hpp"
+#include "sph/single_precision/single_passes.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
 
@@ -240,10 +241,12 @@ std::string stage_csv(const Result& r) {
 }
 
 std::string machine() {
-    return fmt::format("{}, {} cores (hardware_concurrency), {}, compiler {}, load average at "
-                       "start {}",
+    return fmt::format("{}, {} cores (hardware_concurrency), {}, compiler {}, single-precision "
+                       "passes {}, load average at start {}",
                        bench::now_utc("%Y-%m-%d %H:%M"), std::thread::hardware_concurrency(),
-                       bench::cpu_model(), __VERSION__, bench::load_average());
+                       bench::cpu_model(), __VERSION__,
+                       fmt::format("{} ({})", simd_variant(), simd_instructions()),
+                       bench::load_average());
 }
 
 int usage() {

@@ -74,6 +74,20 @@ std::string_view simd_variant() {
     return variants[std::size(variants) - 1];
 }
 
+std::string_view simd_instructions() {
+    const std::string_view variant = simd_variant();
+    if (variant != "native" && variant != "baseline")
+        return variant;
+        // This file is compiled with the build's -march, as those variants are.
+#if defined(__AVX512F__)
+    return "avx512";
+#elif defined(__AVX2__)
+    return "avx2";
+#else
+    return "sse";
+#endif
+}
+
 bool single_passes_pay() {
     const std::string_view variant = simd_variant();
     if (variant == "native") {

@@ -65,6 +65,10 @@ bool simd_variant_runs(std::string_view variant);
 // binary lacks or this processor cannot run.
 std::string_view simd_variant();
 
+// The widest instructions the chosen variant's loops use: "avx512", "avx2"
+// or "sse" (for "native" and "baseline", the build's -march), for the
+// benchmarks' headers and run.json.
+std::string_view simd_instructions();
 // Whether the passes this processor gets (simd_variant()) are at least 8
 // floats wide: AVX2 or AVX-512, or a native build for a processor with AVX2.
 // solver.precision "auto" chooses single only then. Measured on the flows of

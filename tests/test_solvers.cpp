@@ -120,13 +120,26 @@ TEST_CASE("the walls of a box are sampled as deep as the kernel reaches", "[solv
     CHECK(expected > 0);
 }
 
-TEST_CASE("the adaptive step follows the CFL, viscous and force conditions", "[solvers]") {
+namespace {
+
+// A CFL of 0.5 and bounds the conditions never reach; scales of a water-like
+// fluid at 1 cm spacing (h = 2 spacings, c0 = 10 m/s, no viscosity).
+TimeStepSettings wide_step_bounds() {
     TimeStepSettings settings;
     settings.cfl = 0.5;
     settings.dt_min = 1e-9;
     settings.dt_max = 1;
-    TimeStepScales scales{
-        .h = 0.02, .spacing = 0.01, .sound_speed = 10, .rest_density = 1000, .viscosity = 0};
+    return settings;
+}
+TimeStepScales water_like_scales() {
+    return {.h = 0.02, .spacing = 0.01, .sound_speed = 10, .rest_density = 1000, .viscosity = 0};
+}
+
+} // namespace
+
+TEST_CASE("the adaptive step follows the CFL, viscous and force conditions", "[solvers]") {
+    TimeStepSettings settings = wide_step_bounds();
+    TimeStepScales scales = water_like_scales();
     // Weakly compressible: the sound crosses cfl h per step.
     CHECK(stable_time_step(settings, scales, {.carries_sound = true}, {2, 0}) ==
           Approx(0.5 * 0.02 / 12));
@@ -150,12 +163,8 @@ TEST_CASE("the adaptive step follows the CFL, viscous and force conditions", "[s
 }
 
 TEST_CASE("the adaptive step names the condition that set it", "[solvers]") {
-    TimeStepSettings settings;
-    settings.cfl = 0.5;
-    settings.dt_min = 1e-9;
-    settings.dt_max = 1;
-    TimeStepScales scales{
-        .h = 0.02, .spacing = 0.01, .sound_speed = 10, .rest_density = 1000, .viscosity = 0};
+    TimeStepSettings settings = wide_step_bounds();
+    TimeStepScales scales = water_like_scales();
     const auto limit = [&](TimeStepModel model, ExtremeRates rates) {
         TimeStepLimit which = TimeStepLimit::count;
         stable_time_step(settings, scales, model, rates, &which);

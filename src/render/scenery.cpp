@@ -311,9 +311,6 @@ void Scenery::draw_glass(const Camera& camera) const {
 void Scenery::draw(const FlatPainter& painter, const Camera& camera, double time) {
     const bool flat = dimension_ == 2;
     const glm::mat4 clip = camera.projection * camera.view;
-    // The glass over the fluid and the solids.
-    draw_glass(camera);
-
     // The domain box, depth-tested so the fluid hides its far edges, and the
     // other obstacles.
     lines_.clear();

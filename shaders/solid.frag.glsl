@@ -9,5 +9,5 @@ void main() {
     // Lit as the particles are; a face seen from behind (inside the solid,
     // through the near plane) is lit from its other side.
     vec3 normal = normalize(gl_FrontFacing ? v_normal : -v_normal);
-    f_colour = vec4(shade(u_colour, normal, normalize(-v_position), v_position, 0.3), 1.0);
+    f_colour = vec4(shade(srgb_to_linear(u_colour), normal, normalize(-v_position), v_position, 0.3), 1.0);
 }

@@ -2,7 +2,7 @@
 // intersect correctly with each other and with meshes.
 in vec3 v_point;
 flat in vec3 v_centre;
-flat in vec3 v_colour;
+flat in vec3 v_albedo;
 
 uniform mat4 u_projection;
 uniform float u_radius;
@@ -31,6 +31,6 @@ void main() {
     // The shadow map's pass: depth is all it keeps.
     f_colour = vec4(1.0);
 #else
-    f_colour = vec4(shade(v_colour, normal, -direction, hit, 1.0), 1.0);
+    f_colour = vec4(shade(v_albedo, normal, -direction, hit, 1.0), 1.0);
 #endif
 }

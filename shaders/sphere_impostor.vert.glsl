@@ -14,7 +14,7 @@ uniform vec2 u_range;
 
 out vec3 v_point;        // view-space point on the quad
 flat out vec3 v_centre;  // view-space sphere centre
-flat out vec3 v_colour;
+flat out vec3 v_albedo; // linear
 
 void main() {
     vec3 centre = (u_view * vec4(a_centre, 1.0)).xyz;
@@ -30,6 +30,6 @@ void main() {
     v_point = centre + front * o.to_eye +
               o.half_size * (a_corner.x * o.axis_x + a_corner.y * o.axis_y);
     v_centre = centre;
-    v_colour = map_colour(u_colour_map, u_range, a_scalar);
+    v_albedo = srgb_to_linear(map_colour(u_colour_map, u_range, a_scalar));
     gl_Position = u_projection * vec4(v_point, 1.0);
 }

@@ -1,6 +1,6 @@
 in vec3 v_normal;
 in vec3 v_position;
-flat in vec3 v_colour;
+flat in vec3 v_albedo;
 
 uniform bool u_orthographic;
 
@@ -8,5 +8,5 @@ out vec4 f_colour;
 
 void main() {
     vec3 to_eye = u_orthographic ? vec3(0.0, 0.0, 1.0) : normalize(-v_position);
-    f_colour = vec4(shade(v_colour, normalize(v_normal), to_eye, v_position, 1.0), 1.0);
+    f_colour = vec4(shade(v_albedo, normalize(v_normal), to_eye, v_position, 1.0), 1.0);
 }

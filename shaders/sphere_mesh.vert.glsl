@@ -11,12 +11,12 @@ uniform vec2 u_range;
 
 out vec3 v_normal;   // view space
 out vec3 v_position; // view space
-flat out vec3 v_colour;
+flat out vec3 v_albedo; // linear
 
 void main() {
     vec4 position = u_view * vec4(a_centre + u_radius * a_vertex, 1.0);
     v_position = position.xyz;
     v_normal = mat3(u_view) * a_vertex;
-    v_colour = map_colour(u_colour_map, u_range, a_scalar);
+    v_albedo = srgb_to_linear(map_colour(u_colour_map, u_range, a_scalar));
     gl_Position = u_projection * position;
 }

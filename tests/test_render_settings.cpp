@@ -57,6 +57,45 @@ TEST_CASE("each colour field has its own default range from the scene's physics"
     CHECK(make_render_settings(drop_default).range[1] == Approx(0.5 * 1000 * 0.1 * 0.1));
 }
 
+TEST_CASE("the default speed range holds a dam break's front, a jet's fall and a pool's",
+          "[render]") {
+    const double g = 9.81;
+    // A column with room beside it breaks: Ritter's front, 2 sqrt(g H),
+    // H the column's height.
+    const Scene dam = load_scene(shipped("dam_break_2d"), {});
+    const double column = dam.fluid.blocks[0].max[1];
+    CHECK(make_render_settings(dam).range[1] == Approx(2 * std::sqrt(g * column)));
+    // The same in 3D, where the block spans the tank's depth but not its
+    // length.
+    const Scene dam_3d = load_scene(shipped("dam_break_3d"), {});
+    CHECK(make_render_settings(dam_3d).range[1] ==
+          Approx(2 * std::sqrt(g * dam_3d.fluid.blocks[0].max[1])));
+    // A pool filling the floor only falls: sqrt(2 g H). The drop above it,
+    // thrown down at 0.5 m/s with its top 0.17 m up, breaks as a column:
+    // sqrt(0.5^2 + 4 g 0.17).
+    const Scene drop = load_scene(shipped("drop_3d"), {});
+    CHECK(make_render_settings(drop).range[1] == Approx(std::sqrt(0.25 + 4 * g * 0.17)));
+    const Scene pool = load_scene(shipped("hydrostatic_2d"), {{"render.colour", "velocity"}});
+    CHECK(make_render_settings(pool).range[1] == Approx(std::sqrt(2 * g * 0.1)));
+    // Pressure keeps the fall's speed: rho0 g H under the column.
+    const Scene dam_pressure = load_scene(shipped("dam_break_2d"), {{"render.colour", "pressure"}});
+    CHECK(make_render_settings(dam_pressure).range[1] == Approx(1000 * g * column));
+}
+
+TEST_CASE("the shipped 2D dam break's default run stays inside its default speed range",
+          "[render][cli]") {
+    // With the fall's sqrt(2 g H) as the top, the front ran above it and
+    // the scene's first run warned.
+    const test::TempFolder tmp;
+    const test::ProgramResult run =
+        test::run_sphclip(tmp, {"run", shipped("dam_break_2d").string(), "--out",
+                                (tmp / "out").string(), "--duration", "0.3", "--fps", "30",
+                                "--no-mp4", "--quiet", "--set", "render.size=[160,90]"});
+    REQUIRE(run.exit_code == 0);
+    INFO(run.output);
+    CHECK(run.output.find("outside the colour range") == std::string::npos);
+}
+
 TEST_CASE("an explicit range is used as given, and names its key", "[render]") {
     const Scene scene = load_scene(shipped("emitter_fill_2d"),
                                    {{"render.colour", "density"}, {"render.range", "[0, 2.5]"}});

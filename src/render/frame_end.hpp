@@ -24,9 +24,10 @@ class RenderTarget;
 // with the particles: Scenery::draw_solids), then the overlay (colour bar, its labels, the caption)
 // over everything, and reads the samples back resolved, rows top-down. Sets the draw time (since
 // `start`, which began the frame) and the readback time.
+// `parts` times the glass, the outlines, the overlay and the readback.
 Image finish_frame(Scenery& scenery, Overlay& overlay, FlatPainter& painter,
                    gl::RenderTarget& target, const Camera& camera, const Snapshot& frame,
                    const FrameLayout& layout, std::chrono::steady_clock::time_point start,
-                   FrameTimings& timings);
+                   FrameTimings& timings, PartClock& parts);
 
 } // namespace sph

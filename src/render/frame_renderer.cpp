@@ -90,6 +90,7 @@ std::size_t FrameRenderer::last_above_range() const {
 Image FrameRenderer::render(const Snapshot& frame) {
     Parts& p = *parts_;
     const auto start = Clock::now();
+    PartClock parts(time_parts_, timings_.part_seconds);
     // The scene's camera, fitted into the room the overlay leaves.
     p.pose = p.rig.pose(frame);
     const Camera camera = make_camera(settings_, p.pose, p.layout);
@@ -97,6 +98,7 @@ Image FrameRenderer::render(const Snapshot& frame) {
     // batch's counts of particles outside the colour range still warn).
     p.batch.fill(frame, camera, p.outline_rule);
     timings_.fill_seconds = seconds_since(start);
+    parts.mark(FramePart::fill);
     // The surface from the particles, on the CPU (once a frame, whoever
     // asks first).
     const Surface* surface = nullptr;
@@ -105,6 +107,7 @@ Image FrameRenderer::render(const Snapshot& frame) {
         surface = &p.surfaces->of(frame);
         timings_.surface_seconds = seconds_since(surface_start);
         timings_.surface_vertices = surface->mesh.vertices();
+        parts.mark(FramePart::surface);
     }
 
     // The key light, and the depth of what casts its shadows: the fluid
@@ -113,6 +116,7 @@ Image FrameRenderer::render(const Snapshot& frame) {
         p.surface->upload(surface->mesh, camera);
     else
         p.spheres.upload(p.batch);
+    parts.mark(FramePart::upload);
     const Lighting lighting = p.light.light(camera, {[&](const Camera& light) {
                                                          if (p.surface)
                                                              p.surface->draw_depth(light);
@@ -124,23 +128,30 @@ Image FrameRenderer::render(const Snapshot& frame) {
                                                      }});
     p.spheres.set_lighting(lighting);
     p.scenery.set_lighting(lighting);
+    parts.mark(FramePart::shadow_map);
 
     // The backdrop; the fluid and colour bar share the colour map.
     p.target.begin();
     p.overlay.backdrop().draw();
     gl::bind_colour_map(p.colour_map);
+    parts.mark(FramePart::backdrop);
     // The floor, then the fluid, depth-tested with itself and with the
     // solids; their creases darkened.
     p.scenery.draw_floor(camera);
+    parts.mark(FramePart::floor);
     if (p.surface)
         p.surface->draw(camera);
     else
         p.spheres.draw(p.batch, camera);
+    parts.mark(FramePart::fluid);
     p.scenery.draw_solids(camera);
+    parts.mark(FramePart::solids);
     p.light.occlude(p.target, camera);
-    // The solids and the overlay, then the pixels read back.
+    parts.mark(FramePart::occlusion);
+    // The glass, the solids' lines and the overlay, then the pixels read
+    // back.
     return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
-                        timings_);
+                        timings_, parts);
 }
 
 } // namespace sph

@@ -9,6 +9,7 @@
 
 #include "output/image.hpp"
 #include "render/camera.hpp"
+#include "render/frame_parts.hpp"
 #include "render/render_settings.hpp"
 #include "sph/snapshot.hpp"
 
@@ -29,6 +30,9 @@ struct FrameTimings {
     // reconstructed this frame's surface first), and its vertex count.
     double surface_seconds = 0;
     std::size_t surface_vertices = 0;
+    // Each part's time (frame_parts.hpp), when the renderer times its parts
+    // (FrameRenderer::time_parts); zeros otherwise.
+    FramePartSeconds part_seconds{};
 };
 
 class FrameRenderer {
@@ -45,6 +49,10 @@ class FrameRenderer {
 
     Image render(const Snapshot& frame);
     const FrameTimings& last_timings() const { return timings_; }
+    // Wait for each part of the frame to finish before the next begins, and
+    // time it (FrameTimings::part_seconds): the benchmarks' breakdown. The
+    // frame's pixels are the same; it takes a little longer.
+    void time_parts(bool on) { time_parts_ = on; }
     // Particles drawn in the last frame (buried ones are skipped), and those
     // skipped as outside the view.
     std::size_t last_drawn() const;
@@ -65,6 +73,7 @@ class FrameRenderer {
     RenderSettings settings_;
     std::unique_ptr<Parts> parts_;
     FrameTimings timings_;
+    bool time_parts_ = false;
 };
 
 } // namespace sph

@@ -1,5 +1,6 @@
 #include "render/lighting.hpp"
 
+#include <embedded_shaders.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 namespace sph {
@@ -26,6 +27,10 @@ Lighting key_light(const Camera& camera, const glm::dvec3& up_world, const Palet
     l.to_light = glm::normalize(rotation * world);
     l.up = glm::normalize(rotation * up);
     return l;
+}
+
+std::string lighting_source(bool shadows) {
+    return (shadows ? "#define SHADOWS\n" : "") + std::string(shaders::lighting);
 }
 
 void set_lighting(GLuint program, const Lighting& l) {

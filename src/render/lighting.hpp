@@ -9,6 +9,7 @@
 
 #include <glad/gl.h>
 #include <glm/glm.hpp>
+#include <string>
 
 namespace sph {
 
@@ -30,6 +31,11 @@ struct Lighting {
 // fluid's lit side faces the camera and its shadow falls on the floor to the
 // right and behind it. A 2D camera keeps the light fixed to the view.
 Lighting key_light(const Camera& camera, const glm::dvec3& up, const Palette& palette);
+
+// The shared lighting code (shaders/lighting.glsl) for a lit program, with
+// the shadow map's lookup compiled in only where the frame has one
+// (casts_shadows): without it the lookup is skipped, not merely switched off.
+std::string lighting_source(bool shadows);
 
 // Sets `lighting`'s uniforms on `program` (which is in use).
 void set_lighting(GLuint program, const Lighting& lighting);

@@ -10,11 +10,35 @@ namespace sph {
 
 namespace {
 
-// The fastest speed the scene's fluid can reach, m/s: a particle of a block
-// or an inlet that falls from its source's highest point to the domain's
-// lowest (along gravity) keeps its initial speed's energy and gains
-// 2 |g| H (Bernoulli, no losses). 0 when nothing in the scene moves or falls.
-double fastest_speed(const Scene& scene) {
+// Whether a block fills the domain across gravity (within half a spacing on
+// every axis but gravity's): a pool or a layer, with no room beside it to
+// collapse into.
+bool fills_floor(const Scene& scene, const FluidBlock& b, const glm::dvec3& g) {
+    int down = -1;
+    for (int a = 0; a < scene.dimension; ++a)
+        if (g[a] != 0 && (down < 0 || std::abs(g[a]) > std::abs(g[down])))
+            down = a;
+    const double slack = 0.5 * scene.fluid.spacing;
+    for (int a = 0; a < scene.dimension; ++a)
+        if (a != down &&
+            (b.min[a] > scene.domain.min[a] + slack || b.max[a] < scene.domain.max[a] - slack))
+            return false;
+    return true;
+}
+
+// The fastest speed the scene's fluid reaches, m/s, from the height H of a
+// source's highest point above the domain's lowest (along gravity) and its
+// initial or inlet speed v0. A particle that merely falls keeps v0's energy
+// and gains 2 |g| H (Bernoulli, no losses): sqrt(v0^2 + 2 |g| H). With
+// `fronts`, a block with room beside it is a dam that breaks: the front of a
+// column of depth H running over a dry floor goes at 2 sqrt(|g| H) (Ritter
+// 1892; the shallow-water dam break), faster than the fall, as the column's
+// pressure pushes its tip; so sqrt(v0^2 + 4 |g| H). H is the block's top
+// above the floor: a column standing on the floor is that deep, one held
+// above it lands deeper. Emitters' jets and blocks that fill the domain
+// across gravity (pools, layers) only fall. 0 when nothing in the scene
+// moves or falls.
+double fastest_speed(const Scene& scene, bool fronts) {
     glm::dvec3 g(0);
     if (scene.effects.gravity)
         for (int a = 0; a < scene.dimension; ++a)
@@ -34,15 +58,15 @@ double fastest_speed(const Scene& scene) {
     };
     const double floor = height(scene.domain.min, scene.domain.max, false);
     double fastest = 0;
-    auto source = [&](const Vec3& lo, const Vec3& hi, const Vec3& v) {
+    auto source = [&](const Vec3& lo, const Vec3& hi, const Vec3& v, bool dam) {
         const double fall = std::max(0.0, height(lo, hi, true) - floor);
         const double v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-        fastest = std::max(fastest, std::sqrt(v2 + 2 * g_norm * fall));
+        fastest = std::max(fastest, std::sqrt(v2 + (dam ? 4 : 2) * g_norm * fall));
     };
     for (const FluidBlock& b : scene.fluid.blocks)
-        source(b.min, b.max, b.velocity);
+        source(b.min, b.max, b.velocity, fronts && !fills_floor(scene, b, g));
     for (const SceneEmitter& e : scene.effects.emitters)
-        source(e.min, e.max, e.velocity);
+        source(e.min, e.max, e.velocity, false);
     return fastest;
 }
 
@@ -51,14 +75,17 @@ double fastest_speed(const Scene& scene) {
 std::array<double, 2> default_colour_range(const Scene& scene, ColourField field) {
     // Nothing in the scene sets a speed (no gravity, fluid at rest, as a
     // drop pulled round by surface tension): a gentle 0.1 m/s.
-    double speed = fastest_speed(scene);
-    if (!(speed > 0))
-        speed = 0.1;
+    auto at_least_gentle = [](double v) {
+        return v > 0 ? v : 0.1;
+    };
     if (field == ColourField::velocity)
-        return {0, speed};
-    // The pressure that stops that flow: rho0 |g| H under still fluid (the
-    // initial speed zero), plus the dynamic pressure rho0 v^2 / 2 of a
-    // source's speed; in zero gravity only the latter.
+        return {0, at_least_gentle(fastest_speed(scene, true))};
+    // Pressure and density follow the fall's speed v = sqrt(v0^2 + 2 |g| H),
+    // not a dam's front: the front's tip is the fastest fluid, but thin,
+    // and its pressure is low. The pressure that stops a fall: rho0 |g| H
+    // under still fluid (the initial speed zero), plus the dynamic pressure
+    // rho0 v0^2 / 2 of a source's speed; in zero gravity only the latter.
+    const double speed = at_least_gentle(fastest_speed(scene, false));
     const double rho0 = scene.material.rest_density;
     const double pressure = 0.5 * rho0 * speed * speed;
     if (field == ColourField::pressure)

@@ -29,8 +29,11 @@ class Scenery {
     // The mesh obstacles, solid and lit like the particles (3D), before the
     // ambient occlusion so it sees them.
     void draw_solids(const Camera& camera) const;
-    // Everything else, after the particles and the solids: the glass is
-    // blended over them.
+    // The tank's walls as glass (3D, render.tank), after the particles and
+    // the solids: it is blended over them.
+    void draw_glass(const Camera& camera) const;
+    // Everything else, after the glass: the domain box's edges, the other
+    // obstacles and the paddles.
     void draw(const FlatPainter& painter, const Camera& camera, double time);
     // The light the solids and the floor are lit with; by default as in 2D.
     void set_lighting(const Lighting& lighting) { lighting_ = lighting; }
@@ -39,8 +42,6 @@ class Scenery {
     double reach() const { return reach_; }
 
   private:
-    void draw_glass(const Camera& camera) const;
-
     int dimension_;
     glm::dvec3 domain_min_, domain_max_;
     float behind_;     // 2D: the fills' depth, behind the particles

@@ -30,17 +30,16 @@ SpherePass::SpherePass(const RenderSettings& s, std::string_view impostor_define
     : impostor_(s.spheres == SphereDrawing::impostor),
       radius_(float(s.radius)), range_{float(s.range[0]), float(s.range[1])},
       instances_(gl::Buffer::generate()) {
+    const std::string lighting = lighting_source(casts_shadows(s));
     if (impostor_) {
         program_ = gl::link_program(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag,
-                                    std::string(impostor_defines) + std::string(shaders::lighting));
+                                    std::string(impostor_defines) + lighting);
         depth_program_ =
             gl::link_program(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag,
-                             "#define DEPTH_ONLY\n" + std::string(impostor_defines) +
-                                 std::string(shaders::lighting));
+                             "#define DEPTH_ONLY\n" + std::string(impostor_defines) + lighting);
         make_outlines();
     } else {
-        program_ = gl::link_program(shaders::sphere_mesh_vert, shaders::sphere_mesh_frag,
-                                    shaders::lighting);
+        program_ = gl::link_program(shaders::sphere_mesh_vert, shaders::sphere_mesh_frag, lighting);
         make_mesh(s.mesh_subdivisions);
     }
     glBindVertexArray(0);

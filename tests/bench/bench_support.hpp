@@ -84,6 +84,16 @@ inline double peak_rss_mib() {
     return double(usage.ru_maxrss) / 1024.0;
 }
 
+// CPU time of the whole process, ms, every thread's (llvmpipe's rasteriser,
+// OpenVDB's and OpenMP's workers): on a shared machine it moves much less
+// with the others' load than wall time, and against wall time it says how
+// many cores a step keeps busy.
+inline double cpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 // The options the GL benchmarks (render, surface) share: --tiny (a quick
 // run, for ctest), --csv FILE, --png FOLDER, --counts N,N and
 // --backends egl,osmesa.

@@ -17,6 +17,7 @@
 //   build/sphclip_bench_render --counts 1000000 --backends egl   # a part of it
 //   build/sphclip_bench_render --tiny                # one small frame per case (CI)
 //   build/sphclip_bench_render --light --size 1920x1080   # light and depth's rows only
+//   build/sphclip_bench_render --parts --counts 100000     # ... each split into its parts
 #include "bench_support.hpp"
 #include "output/image_compare.hpp"
 #include "output/png_io.hpp"
@@ -27,6 +28,7 @@
 #include "sph/surface.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -128,7 +130,8 @@ struct Row {
     std::unique_ptr<FrameRenderer> renderer;           // plain techniques
     std::unique_ptr<VariantRenderer> variant_renderer; // the others
     std::vector<double> ms, cpu_ms, fill_ms, draw_ms, readback_ms;
-    Image image; // the last frame
+    std::array<std::vector<double>, frame_part_count> part_ms; // --parts
+    Image image;                                               // the last frame
 
     Row(const Technique& t, const RenderSettings& r) : technique(&t), variant(variant_of(t)) {
         if (is_plain(variant))
@@ -165,14 +168,6 @@ std::string outline_name(const RenderSettings& r) {
     return fmt::format("triangle below {:g} px", r.triangles_below_px);
 }
 
-// CPU time of the whole process, llvmpipe's rasteriser threads included: on
-// a shared machine it moves much less with the others' load than wall time.
-double cpu_ms() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -180,6 +175,10 @@ int main(int argc, char** argv) {
     const bool& tiny = options.tiny;
     const std::string &csv_path = options.csv, &png_folder = options.png;
     bool light_only = false;
+    // --parts: light and depth's rows, each frame's parts timed on their
+    // own (FrameRenderer::time_parts), a row of their times instead of the
+    // usual row.
+    bool parts = false;
     int size_w = 0, size_h = 0;
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
@@ -187,13 +186,15 @@ int main(int argc, char** argv) {
             continue;
         if (arg == "--light")
             light_only = true;
+        else if (arg == "--parts")
+            light_only = parts = true;
         else if (arg == "--size" && k + 1 < argc &&
                  std::sscanf(argv[++k], "%dx%d", &size_w, &size_h) == 2 && size_w > 0 &&
                  size_h > 0) {
         } else {
             fmt::print(stderr,
                        "usage: {} [--tiny] [--counts N,N] [--backends egl,osmesa] [--csv FILE] "
-                       "[--png FOLDER] [--light] [--size WxH]\n",
+                       "[--png FOLDER] [--light] [--parts] [--size WxH]\n",
                        argv[0]);
             return 2;
         }
@@ -262,10 +263,17 @@ int main(int argc, char** argv) {
         {.name = "mesh", .spheres = SphereDrawing::mesh},
     };
 
-    emit("backend,layout,particles,technique,spheres,skip_buried,cull_view,flat_below_px,"
-         "flat_as,sorted,outline,samples,drawn,flat,outside_view,width,height,"
-         "shadows,ambient_occlusion,ms_per_frame,fps,cpu_ms,fill_ms,draw_ms,readback_ms,"
-         "mean_diff_vs_raycast,different_pct_vs_raycast,match_vs_raycast,resident_mb");
+    if (parts) {
+        std::string header = "backend,layout,particles,technique,drawn,width,height,ms_per_frame";
+        for (std::size_t k = 0; k < frame_part_count; ++k)
+            header += fmt::format(",{}_ms", frame_part_name(FramePart(k)));
+        emit(header);
+    } else {
+        emit("backend,layout,particles,technique,spheres,skip_buried,cull_view,flat_below_px,"
+             "flat_as,sorted,outline,samples,drawn,flat,outside_view,width,height,"
+             "shadows,ambient_occlusion,ms_per_frame,fps,cpu_ms,fill_ms,draw_ms,readback_ms,"
+             "mean_diff_vs_raycast,different_pct_vs_raycast,match_vs_raycast,resident_mb");
+    }
     const char* layouts[] = {"block", "close-up", "scattered"};
     for (std::size_t n : counts)
         for (const char* layout : layouts) {
@@ -291,6 +299,8 @@ int main(int argc, char** argv) {
                     if (mesh && (n > 100000 || !block))
                         continue;
                     if (light_only && !is_reference && !t.light_row)
+                        continue;
+                    if (parts && !t.light_row)
                         continue;
                     if (t.light_row && !t.defaults && close_up)
                         continue;
@@ -328,6 +338,8 @@ int main(int argc, char** argv) {
                             glm::dvec3(0.05) + 0.2 * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
                     }
                     rows.emplace_back(t, r);
+                    if (parts)
+                        rows.back().renderer->time_parts(true);
                     rows.back().render(s); // warm-up: shader compilation, buffers
                 }
                 // Round-robin over the techniques, so that a change in the load
@@ -340,17 +352,30 @@ int main(int argc, char** argv) {
                 for (int round = 0; round < rounds; ++round)
                     for (Row& row : rows) {
                         const auto start = std::chrono::steady_clock::now();
-                        const double cpu_start = cpu_ms();
+                        const double cpu_start = bench::cpu_ms();
                         row.image = row.render(s);
                         row.ms.push_back(std::chrono::duration<double, std::milli>(
                                              std::chrono::steady_clock::now() - start)
                                              .count());
-                        row.cpu_ms.push_back(cpu_ms() - cpu_start);
+                        row.cpu_ms.push_back(bench::cpu_ms() - cpu_start);
                         const FrameTimings& ft = row.timings();
                         row.fill_ms.push_back(ft.fill_seconds * 1e3);
                         row.draw_ms.push_back(ft.draw_seconds * 1e3);
                         row.readback_ms.push_back(ft.readback_seconds * 1e3);
+                        for (std::size_t k = 0; k < frame_part_count; ++k)
+                            row.part_ms[k].push_back(ft.part_seconds[k] * 1e3);
                     }
+                if (parts) {
+                    for (Row& row : rows) {
+                        std::string line = fmt::format("{},{},{},{},{},{},{},{:.1f}", backend,
+                                                       layout, n, row.technique->name, row.drawn(),
+                                                       width, height, bench::median(row.ms));
+                        for (std::size_t k = 0; k < frame_part_count; ++k)
+                            line += fmt::format(",{:.1f}", bench::median(row.part_ms[k]));
+                        emit(line);
+                    }
+                    continue;
+                }
                 const Image& reference = rows.front().image;
                 for (Row& row : rows) {
                     const Technique& t = *row.technique;

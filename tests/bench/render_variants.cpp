@@ -170,8 +170,9 @@ Image VariantRenderer::render(const Snapshot& frame) {
     }
     p.scenery.draw_solids(camera);
     p.light.occlude(p.target, camera);
+    PartClock parts(false, timings_.part_seconds);
     return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
-                        timings_);
+                        timings_, parts);
 }
 
 } // namespace sph

@@ -13,6 +13,7 @@
 //   build/sphclip_bench_surface --counts 100000 --backends egl
 //   build/sphclip_bench_surface --tiny           # one small frame (CI)
 //   build/sphclip_bench_surface --light          # ... also with shadows and/or ambient occlusion
+//   build/sphclip_bench_surface --parts          # ... the frame's drawing split into its parts
 #include "bench_support.hpp"
 #include "output/png_io.hpp"
 #include "render/frame_renderer.hpp"
@@ -20,6 +21,7 @@
 #include "render/surface/reconstruct.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -76,6 +78,9 @@ int main(int argc, char** argv) {
     const std::string &csv_path = options.csv, &png_folder = options.png;
     int repeats = 3;
     bool light = false;
+    // --parts: the frame's parts each timed on their own
+    // (FrameRenderer::time_parts), a column each.
+    bool parts = false;
     SurfaceSettings surface;
     for (int k = 1; k < argc; ++k) {
         const std::string arg = argv[k];
@@ -87,13 +92,16 @@ int main(int argc, char** argv) {
             surface.voxel = std::stod(argv[++k]);
         else if (arg == "--light")
             light = true;
+        else if (arg == "--parts")
+            parts = true;
         else if (arg == "--repeats" && k + 1 < argc)
             repeats = std::max(1, std::stoi(argv[++k]));
         else {
-            fmt::print(stderr,
-                       "usage: {} [--tiny] [--counts N,N] [--backends egl,osmesa] [--repeats N] "
-                       "[--smoothing N] [--voxel V] [--light] [--csv FILE] [--png FOLDER]\n",
-                       argv[0]);
+            fmt::print(
+                stderr,
+                "usage: {} [--tiny] [--counts N,N] [--backends egl,osmesa] [--repeats N] "
+                "[--smoothing N] [--voxel V] [--light] [--parts] [--csv FILE] [--png FOLDER]\n",
+                argv[0]);
             return 2;
         }
     }
@@ -131,8 +139,16 @@ int main(int argc, char** argv) {
         note(fmt::format("render.surface: voxel {}, radius {} (x spacing), smoothing {}",
                          surface.voxel, surface.radius, surface.smoothing));
     }
-    emit("backend,particles,width,height,vertices,triangles,reconstruct_ms,colour_ms,"
-         "draw_ms,readback_ms,frame_ms,peak_rss_mib,shadows,ambient_occlusion");
+    // The reconstruction's steps after the first columns, and its CPU time
+    // (OpenVDB's threads included): how many cores it keeps busy.
+    std::string header =
+        "backend,particles,width,height,vertices,triangles,reconstruct_ms,colour_ms,"
+        "draw_ms,readback_ms,frame_ms,peak_rss_mib,shadows,ambient_occlusion,"
+        "rasterise_ms,smoothing_ms,meshing_ms,normals_ms,reconstruct_cpu_ms";
+    if (parts)
+        for (std::size_t k = 0; k < frame_part_count; ++k)
+            header += fmt::format(",{}_ms", frame_part_name(FramePart(k)));
+    emit(header);
     // Light and depth's switches (render.shadows, render.ambient_occlusion):
     // off, as by default; with --light each on alone and both.
     std::vector<std::array<bool, 2>> lights{{false, false}};
@@ -163,7 +179,10 @@ int main(int argc, char** argv) {
                     r.camera_position =
                         glm::dvec3(0.05) + 0.2 * glm::normalize(glm::dvec3(0.8, 0.6, 1.3));
                     FrameRenderer renderer(r);
+                    renderer.time_parts(parts);
                     std::vector<double> reconstruct, colour, draw, readback, total;
+                    std::vector<double> rasterise, smoothing, meshing, normals, cpu;
+                    std::array<std::vector<double>, frame_part_count> part_ms;
                     std::size_t vertices = 0, triangles = 0;
                     Image image;
                     for (int k = 0; k < repeats; ++k) {
@@ -171,8 +190,14 @@ int main(int argc, char** argv) {
                         // frame's surface once (FrameSurface), and would reuse it.
                         frame.frame = std::uint64_t(k);
                         // The split, from the reconstruction alone...
+                        const double cpu_start = bench::cpu_ms();
                         const Surface s = reconstruct_surface(frame, r.field, spacing, r.surface);
+                        cpu.push_back(bench::cpu_ms() - cpu_start);
                         reconstruct.push_back(1e3 * s.reconstruction_seconds);
+                        rasterise.push_back(1e3 * s.steps.rasterise);
+                        smoothing.push_back(1e3 * s.steps.smoothing);
+                        meshing.push_back(1e3 * s.steps.meshing);
+                        normals.push_back(1e3 * s.steps.normals);
                         colour.push_back(1e3 * s.colour_seconds);
                         vertices = s.mesh.vertices();
                         triangles = s.mesh.triangles.size() / 3;
@@ -184,13 +209,23 @@ int main(int argc, char** argv) {
                         const FrameTimings& t = renderer.last_timings();
                         draw.push_back(1e3 * (t.draw_seconds - t.surface_seconds));
                         readback.push_back(1e3 * t.readback_seconds);
+                        for (std::size_t p = 0; p < frame_part_count; ++p)
+                            part_ms[p].push_back(1e3 * t.part_seconds[p]);
                     }
-                    emit(fmt::format(
-                        "{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.0f},{},{}",
+                    std::string line = fmt::format(
+                        "{},{},{},{},{},{},{:.1f},{:.1f},{:.1f},{:.1f},{:.1f},{:.0f},{},{},{:.1f},{"
+                        ":"
+                        ".1f},{:.1f},{:.1f},{:.1f}",
                         backend, n, width, height, vertices, triangles, bench::median(reconstruct),
                         bench::median(colour), bench::median(draw), bench::median(readback),
                         bench::median(total), bench::peak_rss_mib(), shadows ? "on" : "off",
-                        occlusion ? "on" : "off"));
+                        occlusion ? "on" : "off", bench::median(rasterise),
+                        bench::median(smoothing), bench::median(meshing), bench::median(normals),
+                        bench::median(cpu));
+                    if (parts)
+                        for (std::size_t p = 0; p < frame_part_count; ++p)
+                            line += fmt::format(",{:.1f}", bench::median(part_ms[p]));
+                    emit(line);
                     if (!png_folder.empty())
                         write_png(std::filesystem::path(png_folder) /
                                       fmt::format("surface_{}_{}_{}x{}{}{}.png", backend, n, width,

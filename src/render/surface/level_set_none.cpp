@@ -18,10 +18,11 @@ namespace {
 bool surface_3d_available() {
     return false;
 }
-std::shared_ptr<const LevelSet> make_level_set(const Snapshot&, double, const SurfaceSettings&) {
+std::shared_ptr<const LevelSet> make_level_set(const Snapshot&, double, const SurfaceSettings&,
+                                               SurfaceSteps*) {
     no_openvdb();
 }
-SurfaceMesh mesh_level_set(const LevelSet&) {
+SurfaceMesh mesh_level_set(const LevelSet&, SurfaceSteps*) {
     no_openvdb();
 }
 void write_level_set(const LevelSet&, const std::filesystem::path&) {

@@ -2,6 +2,7 @@
 // level set, smoothed and eroded, meshed at zero; and the .vdb export.
 #include "output/files.hpp"
 #include "render/surface/reconstruct.hpp"
+#include "sph/wall_clock.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -62,8 +63,12 @@ bool surface_3d_available() {
 }
 
 std::shared_ptr<const LevelSet> make_level_set(const Snapshot& frame, double spacing,
-                                               const SurfaceSettings& settings) {
+                                               const SurfaceSettings& settings,
+                                               SurfaceSteps* steps) {
     initialise_openvdb();
+    SurfaceSteps ignored;
+    SurfaceSteps& took = steps ? *steps : ignored;
+    auto step_start = Clock::now();
     const double voxel = settings.voxel * spacing;
     const double radius = settings.radius * spacing;
     // Eroded back to where the drawn spheres' surface would be (radius
@@ -76,6 +81,8 @@ std::shared_ptr<const LevelSet> make_level_set(const Snapshot& frame, double spa
         openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
         raster.rasterizeSpheres(ParticleList(frame), radius);
         raster.finalize(/*prune=*/true);
+        took.rasterise = seconds_since(step_start);
+        step_start = Clock::now();
         openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*grid);
         // After each of a Gaussian pass's four box filters the tracker
         // renormalises the band (three sweeps); first-order upwind gradients
@@ -93,8 +100,10 @@ std::shared_ptr<const LevelSet> make_level_set(const Snapshot& frame, double spa
         // distance; without them the erosion is done by the filter here.
         if (settings.smoothing == 0 && erosion > 0) {
             filter.offset(float(erosion));
+            took.smoothing = seconds_since(step_start);
             return std::make_shared<const LevelSet>(std::move(grid), 0.f);
         }
+        took.smoothing = seconds_since(step_start);
     }
     // The erosion is not applied to the grid (LevelSetFilter::offset tracks
     // the band in small steps, and cost more than all the rest on the
@@ -103,7 +112,8 @@ std::shared_ptr<const LevelSet> make_level_set(const Snapshot& frame, double spa
     return std::make_shared<const LevelSet>(std::move(grid), -float(erosion));
 }
 
-SurfaceMesh mesh_level_set(const LevelSet& level_set) {
+SurfaceMesh mesh_level_set(const LevelSet& level_set, SurfaceSteps* steps) {
+    const auto start = Clock::now();
     const openvdb::FloatGrid& grid = level_set.grid();
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> triangles;
@@ -126,6 +136,7 @@ SurfaceMesh mesh_level_set(const LevelSet& level_set) {
     // trilinearly interpolated distance), smooth across triangles and
     // pointing out of the fluid whatever the faces' winding.
     const double h = 0.5 * grid.voxelSize()[0];
+    const auto normals_start = Clock::now();
 #pragma omp parallel
     {
         openvdb::FloatGrid::ConstAccessor accessor = grid.getConstAccessor();
@@ -150,6 +161,10 @@ SurfaceMesh mesh_level_set(const LevelSet& level_set) {
                 mesh.normals[3 * v + a] = float(g[a]);
             }
         }
+    }
+    if (steps) {
+        steps->meshing = std::chrono::duration<double>(normals_start - start).count();
+        steps->normals = seconds_since(normals_start);
     }
     return mesh;
 }

@@ -35,10 +35,12 @@ Surface reconstruct_surface(const Snapshot& frame, ColourField field, double spa
                             const SurfaceSettings& settings);
 
 // 3D only (level_set_vdb.cpp): the level set's narrow band, and the mesh of
-// its zero crossing with normals from its gradient; no colour yet.
+// its zero crossing with normals from its gradient; no colour yet. `steps`,
+// if given, gets the time of each step.
 std::shared_ptr<const LevelSet> make_level_set(const Snapshot& frame, double spacing,
-                                               const SurfaceSettings& settings);
-SurfaceMesh mesh_level_set(const LevelSet& level_set);
+                                               const SurfaceSettings& settings,
+                                               SurfaceSteps* steps = nullptr);
+SurfaceMesh mesh_level_set(const LevelSet& level_set, SurfaceSteps* steps = nullptr);
 
 // 2D only (marching_squares.cpp): the filled region and its outline, with
 // the colour field interpolated from the grid.

@@ -36,11 +36,21 @@ struct SurfaceMesh {
 // for the .vdb export; opaque so that only one file needs OpenVDB's headers.
 class LevelSet;
 
+// Where a 3D reconstruction's time goes (the surface benchmark's breakdown),
+// s; together they make its reconstruction_seconds.
+struct SurfaceSteps {
+    double rasterise = 0; // the particles' spheres into the level set
+    double smoothing = 0; // the smoothing passes (and the erosion without them)
+    double meshing = 0;   // the level's crossing to triangles
+    double normals = 0;   // the vertices' normals from the gradient
+};
+
 struct Surface {
     SurfaceMesh mesh;
     std::shared_ptr<const LevelSet> level_set; // 3D only
     double reconstruction_seconds = 0;         // particles to level set to mesh
     double colour_seconds = 0;                 // the colour field at the vertices
+    SurfaceSteps steps;                        // 3D
 };
 
 } // namespace sph

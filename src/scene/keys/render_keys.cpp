@@ -32,10 +32,12 @@ const KeyTable<Scene::Render>& render_keys() {
          .field = &S::range,
          .unit = "field unit",
          .doc = "Field values at the two ends of the colour map, used as given for any field; by "
-                "default each field's own from the scene's physics: speed 0..v = sqrt(v0^2 + 2 "
-                "|g| H) (H: the highest fluid or inlet above the floor, v0 its speed), pressure "
-                "0..rho0 v^2 / 2, density rho0 (1 +- max(1%, 2 v^2 / c^2)). A frame with over 5% "
-                "of its particles outside warns.",
+                "default each field's own from the scene's physics: speed 0..the fastest source's "
+                "sqrt(v0^2 + 4 |g| H) for a block with room to collapse (a dam break's front, "
+                "Ritter's 2 sqrt(g H)), sqrt(v0^2 + 2 |g| H) for an emitter or a pool filling "
+                "the floor (a fall; H: the source's top above the floor, v0 its speed); pressure "
+                "0..rho0 v^2 / 2 and density rho0 (1 +- max(1%, 2 v^2 / c^2)) with v the fall's "
+                "speed. A frame with over 5% of its particles outside warns.",
          .absent = "from the scene"},
         {.path = "spheres",
          .field = enum_field<&S::spheres>(),

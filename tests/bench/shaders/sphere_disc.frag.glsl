@@ -6,7 +6,7 @@ flat in float v_scale;
 #else
 in vec2 v_disc;
 #endif
-flat in vec3 v_colour;
+flat in vec3 v_albedo;
 
 out vec4 f_colour;
 
@@ -21,5 +21,5 @@ void main() {
     if (rr > 1.0)
         discard;
     vec3 normal = vec3(p, sqrt(1.0 - rr));
-    f_colour = vec4(shade(v_colour, normal, vec3(0.0, 0.0, 1.0)), 1.0);
+    f_colour = vec4(shade(v_albedo, normal, vec3(0.0, 0.0, 1.0)), 1.0);
 }

@@ -22,14 +22,14 @@ flat out float v_scale; // disc radii per half point size
 #else
 out vec2 v_disc; // the point in the disc, 1 on the silhouette
 #endif
-flat out vec3 v_colour;
+flat out vec3 v_albedo; // linear
 
 void main() {
     vec3 centre = (u_view * vec4(a_centre, 1.0)).xyz;
     // As the impostor's outline, in the plane touching the sphere's front.
     Outline o = sphere_outline(centre, u_radius, u_radius, u_orthographic);
     vec3 front = centre + u_radius * o.to_eye;
-    v_colour = map_colour(u_colour_map, u_range, a_scalar);
+    v_albedo = srgb_to_linear(map_colour(u_colour_map, u_range, a_scalar));
 #ifdef POINTS
     gl_Position = u_projection * vec4(front, 1.0);
     // The disc's radius in pixels: projection[1][1] takes view-space y to

@@ -158,7 +158,8 @@ CLI::App* add_run_command(CLI::App& app, RunCommandLine& line) {
     cmd->add_option("--set", line.sets, "Override a scene field: --set solver.dt=2e-4 (repeatable)")
         ->type_name("KEY=VALUE")
         ->allow_extra_args(false);
-    cmd->add_option("--threads", run.threads, "Threads (default: all cores)")
+    cmd->add_option("--threads", run.threads,
+                    "Threads (default: up to all cores, the count measured as the run goes)")
         ->check(CLI::Range(1, 1024));
     cmd->add_option("--duration", line.duration, "Simulated seconds (same as --set duration=S)")
         ->check(positive_finite_number());

@@ -50,9 +50,14 @@ void ThreadCountTuner::end_window(double cost) {
         }
         return;
     }
+    // A dearer window sets off a try only some windows after the last one:
+    // in a clip the frames' encoding takes a core now and then, and each
+    // such window would otherwise be a try.
     const bool dearer = kept_cost_ > 0 && cost > settings_.slowdown * kept_cost_;
     kept_cost_ = cost;
-    if (++windows_since_try_ < interval_ && !dearer)
+    ++windows_since_try_;
+    if (windows_since_try_ < interval_ &&
+        !(dearer && windows_since_try_ >= settings_.first_interval))
         return;
     // The neighbour on the ladder, alternating sides where there are two.
     int index = kept_ + next_direction_;

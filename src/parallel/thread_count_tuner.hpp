@@ -16,7 +16,8 @@
 // The counts tried are the ladder max, max/2, ..., 1. A try that loses is
 // tried again after twice as many windows (up to max_interval), so a quiet
 // machine pays little for it; a window that costs far more than the last one
-// (a competing job started) makes the next window a try at once.
+// (a competing job started) makes the next window a try, once at least
+// first_interval windows have passed since the last try.
 
 #include <cstdint>
 #include <vector>

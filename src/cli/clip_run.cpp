@@ -346,11 +346,11 @@ class ClipRun {
             sim_.step_toward(time);
             return;
         }
-        omp_set_num_threads(tuner_->threads());
-        const std::uint64_t before = sim_.particle_steps();
-        const auto start = Clock::now();
-        sim_.step_toward(time);
-        tuner_->record(seconds_since(start), sim_.particle_steps() - before);
+        tuner_->step([&] {
+            const std::uint64_t before = sim_.particle_steps();
+            sim_.step_toward(time);
+            return sim_.particle_steps() - before;
+        });
     }
 
     // Counters, statistics and the particle fields some sink reads.

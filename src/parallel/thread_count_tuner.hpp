@@ -19,7 +19,9 @@
 // (a competing job started) makes the next window a try, once at least
 // first_interval windows have passed since the last try.
 
+#include <chrono>
 #include <cstdint>
+#include <omp.h>
 #include <vector>
 
 namespace sph::parallel {
@@ -43,6 +45,16 @@ class ThreadCountTuner {
     int threads() const { return ladder_[active_]; }
     // One step's wall time and the particle-steps it made (particles moved).
     void record(double seconds, std::uint64_t particle_steps);
+    // One step at the chosen count, timed and recorded: step() returns the
+    // particle-steps it made.
+    template <class Step>
+    void step(const Step& step) {
+        omp_set_num_threads(threads());
+        const auto start = std::chrono::steady_clock::now();
+        const std::uint64_t made = step();
+        record(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+               made);
+    }
 
     // Steps taken at each count of the ladder, for run.json.
     struct Use {

@@ -168,13 +168,11 @@ Sample time_steps(const Scene& scene, const State<D>& start, int threads, int st
             sim.step();
             continue;
         }
-        omp_set_num_threads(tuner->threads());
-        const std::uint64_t done = sim.particle_steps();
-        const auto step_start = std::chrono::steady_clock::now();
-        sim.step();
-        tuner->record(
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count(),
-            sim.particle_steps() - done);
+        tuner->step([&] {
+            const std::uint64_t done = sim.particle_steps();
+            sim.step();
+            return sim.particle_steps() - done;
+        });
     }
     Sample s;
     s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -10,9 +10,14 @@
 #include <mutex>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetFilter.h>
+#include <openvdb/tools/LevelSetTracker.h>
+#include <openvdb/tools/Morphology.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
+#include <openvdb/tools/Prune.h>
+#include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tools/VolumeToMesh.h>
 #include <stdexcept>
 #include <system_error>
@@ -56,6 +61,35 @@ class ParticleList {
     const Snapshot& frame_;
 };
 
+// The union of spheres holds, inside the fluid, each sphere's own distance
+// (no deeper than -radius), so every voxel within reach of a particle is
+// active: at 100k particles in a block, 1.1M voxels against the 0.4M of the
+// band around the surface, and the first filter pass would work on all of
+// them. A voxel further than the band's half width (in voxels, along any
+// axis) from every voxel outside the spheres lies deeper than the band: it
+// is set inside and off, as the filter's first renormalisation would have
+// set it, at a twentieth of the cost.
+void drop_deep_inside(openvdb::FloatGrid& grid, int half_width) {
+    openvdb::MaskGrid near_outside;
+    {
+        auto accessor = near_outside.getAccessor();
+        for (auto v = grid.cbeginValueOn(); v; ++v)
+            if (*v > 0)
+                accessor.setValueOn(v.getCoord());
+    }
+    openvdb::tools::dilateActiveValues(near_outside.tree(), half_width,
+                                       openvdb::tools::NN_FACE_EDGE_VERTEX,
+                                       openvdb::tools::IGNORE_TILES);
+    const float inside = -grid.background();
+    openvdb::tools::foreach(grid.beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& v) {
+        if (*v <= 0 && !near_outside.tree().isValueOn(v.getCoord())) {
+            v.setValue(inside);
+            v.setValueOff();
+        }
+    });
+    openvdb::tools::pruneLevelSet(grid.tree());
+}
+
 } // namespace
 
 bool surface_3d_available() {
@@ -72,15 +106,19 @@ std::shared_ptr<const LevelSet> make_level_set(const Snapshot& frame, double spa
     const double voxel = settings.voxel * spacing;
     const double radius = settings.radius * spacing;
     // Eroded back to where the drawn spheres' surface would be (radius
-    // spacing / 2); the band must hold the erosion and the filter's reach.
+    // spacing / 2); the band must hold the erosion and a voxel beyond it,
+    // the box filter's reach. Two voxels at the defaults (one of erosion):
+    // the surface within 0.01 spacings (mean; 0.11 at most) of the one a
+    // band of three gives, with a third fewer voxels to filter.
     const double erosion = std::max(0.0, radius - 0.5 * spacing);
-    const float half_width = float(std::max(3.0, std::ceil(erosion / voxel) + 2));
+    const float half_width = float(std::max(2.0, std::ceil(erosion / voxel) + 1));
     openvdb::FloatGrid::Ptr grid = openvdb::createLevelSet<openvdb::FloatGrid>(voxel, half_width);
     grid->setName("surface");
     if (frame.size() > 0) {
         openvdb::tools::ParticlesToLevelSet<openvdb::FloatGrid> raster(*grid);
         raster.rasterizeSpheres(ParticleList(frame), radius);
         raster.finalize(/*prune=*/true);
+        drop_deep_inside(*grid, int(half_width));
         took.rasterise = seconds_since(step_start);
         step_start = Clock::now();
         openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*grid);
@@ -174,11 +212,24 @@ void write_level_set(const LevelSet& level_set, const std::filesystem::path& pat
     std::filesystem::path temporary = path;
     temporary += ".partial";
     try {
-        // The surface at zero, as a level set's reader expects.
+        // The surface at zero, as a level set's reader expects, in a band of
+        // OpenVDB's usual half width: the band widened by renormalisation,
+        // then every distance shifted by the isovalue (so the zero level is
+        // the meshed one, exactly), then trimmed to the half width.
         openvdb::FloatGrid::Ptr grid = level_set.grid().deepCopy();
-        if (level_set.isovalue() != 0) {
-            openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*grid);
-            filter.offset(-level_set.isovalue());
+        const float voxel = float(grid->voxelSize()[0]);
+        const float shift = -level_set.isovalue();
+        const int half_width = int(openvdb::LEVEL_SET_HALF_WIDTH);
+        openvdb::tools::LevelSetTracker<openvdb::FloatGrid> tracker(*grid);
+        tracker.setSpatialScheme(openvdb::math::FIRST_BIAS);
+        tracker.resize(half_width + int(std::ceil(std::abs(shift) / voxel)));
+        if (shift != 0) {
+            openvdb::tools::foreach(grid->beginValueOn(),
+                                    [&](const openvdb::FloatGrid::ValueOnIter& v) {
+                                        v.setValue(*v + shift);
+                                    });
+            openvdb::tools::changeLevelSetBackground(grid->tree(), half_width * voxel);
+            tracker.prune();
         }
         openvdb::io::File file(temporary.string());
         openvdb::GridCPtrVec grids{grid};

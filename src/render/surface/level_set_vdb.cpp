@@ -81,7 +81,7 @@ void drop_deep_inside(openvdb::FloatGrid& grid, int half_width) {
                                        openvdb::tools::NN_FACE_EDGE_VERTEX,
                                        openvdb::tools::IGNORE_TILES);
     const float inside = -grid.background();
-    openvdb::tools::foreach(grid.beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& v) {
+    openvdb::tools::foreach (grid.beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& v) {
         if (*v <= 0 && !near_outside.tree().isValueOn(v.getCoord())) {
             v.setValue(inside);
             v.setValueOff();
@@ -224,10 +224,9 @@ void write_level_set(const LevelSet& level_set, const std::filesystem::path& pat
         tracker.setSpatialScheme(openvdb::math::FIRST_BIAS);
         tracker.resize(half_width + int(std::ceil(std::abs(shift) / voxel)));
         if (shift != 0) {
-            openvdb::tools::foreach(grid->beginValueOn(),
-                                    [&](const openvdb::FloatGrid::ValueOnIter& v) {
-                                        v.setValue(*v + shift);
-                                    });
+            openvdb::tools::foreach (
+                grid->beginValueOn(),
+                [&](const openvdb::FloatGrid::ValueOnIter& v) { v.setValue(*v + shift); });
             openvdb::tools::changeLevelSetBackground(grid->tree(), half_width * voxel);
             tracker.prune();
         }

@@ -68,7 +68,8 @@ class ParticleList {
 // them. A voxel further than the band's half width (in voxels, along any
 // axis) from every voxel outside the spheres lies deeper than the band: it
 // is set inside and off, as the filter's first renormalisation would have
-// set it, at a twentieth of the cost.
+// set it: 40 ms at 100k particles, where the filter spent 250 ms more on
+// those voxels (sphclip_bench_surface --parts).
 void drop_deep_inside(openvdb::FloatGrid& grid, int half_width) {
     openvdb::MaskGrid near_outside;
     {

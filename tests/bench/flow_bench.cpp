@@ -31,6 +31,7 @@
 #include "sph/state_hash.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -190,6 +191,45 @@ Sample time_steps(const Scene& scene, const State<D>& start, int threads, int st
     return s;
 }
 
+// Mean neighbours a fluid particle has within the support radius h, fluid
+// and wall particles alike: the pairs a step's sums run over, counted from
+// the positions alone so that single-precision cells, double-precision
+// lists, 2D and 3D are counted the same way (issue 22, item 5: the cost
+// per pair, 3D against 2D).
+template <int D>
+double neighbours_per_particle(const Simulation<D>& sim) {
+    const Real h = sim.params().h;
+    std::vector<Vec<D>> points(sim.state().position.begin(), sim.state().position.end());
+    if (const auto* walls = sim.boundary())
+        points.insert(points.end(), walls->positions().begin(), walls->positions().end());
+    // Cells of side h: a pair closer than h lies in neighbouring cells.
+    std::map<std::array<long, D>, std::vector<std::size_t>> cells;
+    const auto cell_of = [&](const Vec<D>& x) {
+        std::array<long, D> c;
+        for (int a = 0; a < D; ++a)
+            c[a] = long(std::floor(x[a] / h));
+        return c;
+    };
+    for (std::size_t k = 0; k < points.size(); ++k)
+        cells[cell_of(points[k])].push_back(k);
+    std::uint64_t pairs = 0;
+    const std::size_t fluid = sim.state().size();
+    for (std::size_t i = 0; i < fluid; ++i) {
+        const auto home = cell_of(points[i]);
+        for (int around = 0; around < (D == 2 ? 9 : 27); ++around) {
+            std::array<long, D> c = home;
+            for (int a = 0, code = around; a < D; ++a, code /= 3)
+                c[a] += code % 3 - 1;
+            const auto found = cells.find(c);
+            if (found == cells.end())
+                continue;
+            for (std::size_t j : found->second)
+                pairs += j != i && squared_length(points[j] - points[i]) < h * h;
+        }
+    }
+    return fluid ? double(pairs) / double(fluid) : 0;
+}
+
 std::string environment(const char* name) {
     const char* v = std::getenv(name);
     return v ? v : "(unset)";
@@ -246,11 +286,14 @@ int run_case(const FlowCase& c, const std::string& scenes, const std::vector<Con
     const double warm_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - warm_start).count();
     const State<D> start = warm.state();
+    const double neighbours = neighbours_per_particle(warm);
     fmt::print("\n### {}: {} particles ({}D, {}), from t = {} s ({} steps, {:.1f} s to get "
-               "there), {} steps timed\n\n",
-               c.name, start.size(), D, c.scene_file, c.start, warm.steps(), warm_s, c.steps);
+               "there), {} steps timed, {:.1f} neighbours a particle within h\n\n",
+               c.name, start.size(), D, c.scene_file, c.start, warm.steps(), warm_s, c.steps,
+               neighbours);
     fmt::print("| configuration | M particle-steps/s (median) | range | ns / particle-step | "
-               "same hash as x1 | top stages (ns / particle-step) |\n|---|---|---|---|---|---|\n");
+               "ns / pair | same hash as x1 | top stages (ns / particle-step) "
+               "|\n|---|---|---|---|---|---|---|\n");
 
     std::vector<std::vector<Sample>> samples(configs.size());
     std::vector<bool> runs(configs.size(), true);
@@ -297,13 +340,17 @@ int run_case(const FlowCase& c, const std::string& scenes, const std::vector<Con
                 top += fmt::format("{}{} {:.0f}", j ? ", " : "", stages[j].second, ns);
             all += fmt::format("{}{}={:.1f}", j ? ";" : "", stages[j].second, ns);
         }
-        fmt::print("| {} | {:.3f} | {:.3f}-{:.3f} | {:.0f} | {} | {} |\n", configs[k].label(),
-                   m * 1e-6, *lo * 1e-6, *hi * 1e-6, 1e9 / m, same, top);
+        const double ns_per_pair = neighbours > 0 ? 1e9 / m / neighbours : 0;
+        fmt::print("| {} | {:.3f} | {:.3f}-{:.3f} | {:.0f} | {:.2f} | {} | {} |\n",
+                   configs[k].label(), m * 1e-6, *lo * 1e-6, *hi * 1e-6, 1e9 / m, ns_per_pair, same,
+                   top);
         if (csv)
-            fmt::print(csv, "{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.1f},{},\"{}\"\n",
-                       c.name, D, start.size(), configs[k].precision, configs[k].threads,
-                       configs[k].reorder, c.steps, samples[k].size(), m, *lo, *hi, 1e9 / m, same,
-                       all);
+            fmt::print(
+                csv,
+                "{},{},{},{},{},{},{},{},{:.0f},{:.0f},{:.0f},{:.1f},{:.2f},{:.3f},{},\"{}\"\n",
+                c.name, D, start.size(), configs[k].precision, configs[k].threads,
+                configs[k].reorder, c.steps, samples[k].size(), m, *lo, *hi, 1e9 / m, neighbours,
+                ns_per_pair, same, all);
     }
     std::fflush(stdout);
     if (csv)
@@ -385,7 +432,8 @@ int main(int argc, char** argv) {
     if (csv) {
         fmt::print(csv, "# sphclip_bench_flow, {}\n", header);
         fmt::print(csv, "case,dimension,particles,precision,threads,reorder_every,steps,rounds,"
-                        "particle_steps_per_s,min,max,ns_per_particle_step,same_hash_as_1_thread,"
+                        "particle_steps_per_s,min,max,ns_per_particle_step,neighbours_per_particle,"
+                        "ns_per_pair,same_hash_as_1_thread,"
                         "stages_ns_per_particle_step\n");
     }
     const CompetingLoad competing(load);

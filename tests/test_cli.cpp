@@ -862,4 +862,39 @@ TEST_CASE("run's stage table names the obstacles and paddles the scene declares,
     CHECK(parts == std::set<std::string>{"gravity", "obstacles", "paddles", "walls"});
     for (const char* part : {"obstacles", "paddles", "walls", "gravity"})
         CHECK(result.output.find(fmt::format("\n{} ", part)) != std::string::npos);
+
+    // dfsph's solves: their cost per iteration, from stats.csv's iteration
+    // counts (each frame's mean a step, times the frame's steps: `steps` is
+    // the run's count so far) and the particles; no other row has one.
+    const Csv stats = read_csv(out / "stats.csv");
+    const auto column = [&](const std::string& name) {
+        double sum = 0, steps_before = 0;
+        for (std::size_t row = 0; row < stats.rows.size(); ++row) {
+            if (stats.rows[row].size() <= 1)
+                continue;
+            const double steps = stats.number(row, "steps");
+            sum += stats.number(row, name) * (steps - steps_before);
+            steps_before = steps;
+        }
+        return sum;
+    };
+    const double steps = run.at("steps").get<double>(),
+                 particles = run.at("particles").get<double>();
+    int solves = 0;
+    for (const json& stage : run.at("stages")) {
+        const auto name = stage.at("name").get<std::string>();
+        const bool solve = name == "pressure solve" || name == "divergence solve";
+        CHECK(stage.contains("ns_per_particle_iteration") == solve);
+        if (!solve)
+            continue;
+        ++solves;
+        const double iterations =
+            column(name == "pressure solve" ? "pressure_iterations" : "divergence_iterations");
+        REQUIRE(iterations > 0);
+        CHECK(stage.at("iterations_per_step").get<double>() == Approx(iterations / steps));
+        CHECK(stage.at("ns_per_particle_iteration").get<double>() ==
+              Approx(stage.at("seconds").get<double>() * 1e9 / (iterations * particles)));
+    }
+    CHECK(solves == 2);
+    CHECK(result.output.find("ns/particle-iteration)") != std::string::npos);
 }

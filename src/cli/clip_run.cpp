@@ -671,7 +671,8 @@ class ClipRun {
         after.add(Stage::output, output);
         overlapped.add(Stage::encode, total.encode_s);
         std::vector<StageRow> stages =
-            stage_rows(sim_.stage_times(), after, wall_seconds, sim_.particle_steps(), overlapped);
+            stage_rows(sim_.stage_times(), after, wall_seconds, sim_.particle_steps(), overlapped,
+                       sim_.solve_work(), sim_.steps());
         record_.document["stages"] = stages_json(stages);
         json limits = json::object();
         for (std::size_t k = 0; k < time_step_limit_names.size(); ++k)

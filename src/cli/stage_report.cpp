@@ -6,7 +6,16 @@ namespace sph {
 
 std::vector<StageRow> stage_rows(const StageTimes& simulation, const StageTimes& after,
                                  double wall_seconds, std::uint64_t particle_steps,
-                                 const StageTimes& overlapped) {
+                                 const StageTimes& overlapped, const SolveWork& solves,
+                                 std::uint64_t steps) {
+    // The solves' work by their stage's name.
+    const auto work_of = [&](std::string_view name) -> std::pair<std::uint64_t, std::uint64_t> {
+        if (name == stage_name(Stage::pressure_solve))
+            return {solves.pressure, solves.pressure_iterations};
+        if (name == stage_name(Stage::divergence_solve))
+            return {solves.divergence, solves.divergence_iterations};
+        return {0, 0};
+    };
     std::vector<StageRow> rows;
     for (const StageTimes* times : {&simulation, &after, &overlapped})
         for (const auto& e : times->entries()) {
@@ -21,6 +30,12 @@ std::vector<StageRow> stage_rows(const StageTimes& simulation, const StageTimes&
                             wall_seconds > 0 ? e.seconds / wall_seconds : 0,
                             particle_steps ? e.seconds * 1e9 / double(particle_steps) : 0,
                             times == &overlapped, std::string()});
+            const auto [particle_iterations, iterations] = work_of(e.name);
+            if (particle_iterations > 0) {
+                rows.back().ns_per_particle_iteration =
+                    e.seconds * 1e9 / double(particle_iterations);
+                rows.back().iterations_per_step = steps ? double(iterations) / double(steps) : 0;
+            }
         }
     return rows;
 }
@@ -38,6 +53,10 @@ nlohmann::json stages_json(const std::vector<StageRow>& rows) {
                         {"ns_per_particle_step", r.ns_per_particle_step}});
         if (r.overlapped)
             list.back()["overlapped"] = true;
+        if (r.ns_per_particle_iteration > 0) {
+            list.back()["ns_per_particle_iteration"] = r.ns_per_particle_iteration;
+            list.back()["iterations_per_step"] = r.iterations_per_step;
+        }
     }
     return list;
 }
@@ -51,9 +70,13 @@ std::string stages_table(const std::vector<StageRow>& rows) {
             out += fmt::format("{:<24} {:>10}\n", r.name, "in " + r.within);
             continue;
         }
-        out += fmt::format("{:<24} {:>10.3f} {:>6.1f}% {:>14.1f}\n",
+        out += fmt::format("{:<24} {:>10.3f} {:>6.1f}% {:>14.1f}",
                            r.overlapped ? r.name + " *" : r.name, r.seconds, 100 * r.share,
                            r.ns_per_particle_step);
+        if (r.ns_per_particle_iteration > 0)
+            out += fmt::format("  ({:.1f} iterations a step, {:.1f} ns/particle-iteration)",
+                               r.iterations_per_step, r.ns_per_particle_iteration);
+        out += "\n";
         any_overlapped = any_overlapped || r.overlapped;
     }
     if (any_overlapped)

@@ -4,6 +4,7 @@
 // wall time and its cost per particle-step.
 
 #include "sph/stage_times.hpp"
+#include "sph/step_counters.hpp"
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -23,15 +24,21 @@ struct StageRow {
     // A part of the scene computed inside this stage (a viscosity in wcsph's
     // pressure pass): its time is that stage's, its own seconds are 0.
     std::string within;
+    // An iterative solve's (dfsph): its cost per particle-iteration, and
+    // the iterations a step took on average; 0 for the other stages.
+    double ns_per_particle_iteration = 0;
+    double iterations_per_step = 0;
 };
 
 // The simulation's stages, then `after` (render, readback, ...: stages
 // outside the step), then `overlapped` (worker threads' busy time), leaving
 // out stages that took no time at all (but the parts computed within
-// another stage).
+// another stage). `solves` and `steps` give the iterative solves' rows
+// their cost per iteration.
 std::vector<StageRow> stage_rows(const StageTimes& simulation, const StageTimes& after,
                                  double wall_seconds, std::uint64_t particle_steps,
-                                 const StageTimes& overlapped = {});
+                                 const StageTimes& overlapped = {}, const SolveWork& solves = {},
+                                 std::uint64_t steps = 0);
 
 nlohmann::json stages_json(const std::vector<StageRow>& rows);
 // Aligned text table, one stage a line, with a header.

@@ -164,6 +164,14 @@ void Simulation<D>::step_by(Real dt) {
         counters_.retries += std::uint64_t(retry) + 1;
     }
     particle_steps_ += (steps_ - steps_before) * state_.size();
+    const std::uint64_t pressure =
+                            counters_.pressure_iterations - counters_before.pressure_iterations,
+                        divergence =
+                            counters_.divergence_iterations - counters_before.divergence_iterations;
+    solve_work_.pressure_iterations += pressure;
+    solve_work_.divergence_iterations += divergence;
+    solve_work_.pressure += pressure * state_.size();
+    solve_work_.divergence += divergence * state_.size();
     time_ += dt;
 }
 

@@ -78,6 +78,9 @@ class Simulation {
     // (accepted steps times the particles they moved).
     const StageTimes& stage_times() const { return stages_; }
     std::uint64_t particle_steps() const { return particle_steps_; }
+    // The same for the iterative solves (dfsph): iterations times the
+    // particles they ran over, summed over the accepted steps.
+    SolveWork solve_work() const { return solve_work_; }
     std::uint64_t steps() const { return steps_; }
     // How many adaptive steps each stability condition set (time_step.hpp);
     // a watchdog's halving or a step cut to land on a frame counts as the
@@ -135,6 +138,7 @@ class Simulation {
     std::uint64_t steps_ = 0;
     std::uint64_t fixed_steps_ = 0;
     std::uint64_t particle_steps_ = 0;
+    SolveWork solve_work_;
     FrameFields output_fields_;
     mutable std::array<std::uint64_t, std::size_t(TimeStepLimit::count)> time_step_limits_{};
     mutable StageTimes stages_; // next_dt() const is timed too // fixed dt: time is this count

@@ -21,4 +21,14 @@ struct StepCounters {
     Real dt_mean() const { return steps ? dt_sum / Real(steps) : 0; }
 };
 
+// Particle-iterations of the iterative solves over a run (an iteration of a
+// solve over n particles counts n): what the stage table divides their
+// time by, so that a solve's cost per iteration shows apart from how many
+// iterations the scene needs.
+struct SolveWork {
+    std::uint64_t pressure = 0;                                       // dfsph's density solve
+    std::uint64_t divergence = 0;                                     // dfsph's divergence solve
+    std::uint64_t pressure_iterations = 0, divergence_iterations = 0; // iterations alone
+};
+
 } // namespace sph

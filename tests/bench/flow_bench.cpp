@@ -139,6 +139,8 @@ struct Sample {
     std::uint64_t particle_steps = 0;
     std::uint64_t hash = 0;
     std::map<std::string, double> stage_s;
+    std::uint64_t steps = 0;
+    SolveWork solves; // dfsph's iterations in the timed steps
     double rate() const { return double(particle_steps) / wall_s; }
 };
 
@@ -159,7 +161,8 @@ Sample time_steps(const Scene& scene, const State<D>& start, int threads, int st
     sim.state() = start;
     sim.step(); // untimed: every array and list sized for this state
     const auto before = sim.stage_times().entries();
-    const std::uint64_t particle_steps_before = sim.particle_steps();
+    const std::uint64_t particle_steps_before = sim.particle_steps(), steps_before = sim.steps();
+    const SolveWork solves_before = sim.solve_work();
     std::optional<parallel::ThreadCountTuner> tuner;
     if (threads == 0)
         tuner.emplace(cores);
@@ -178,6 +181,10 @@ Sample time_steps(const Scene& scene, const State<D>& start, int threads, int st
     Sample s;
     s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     s.particle_steps = sim.particle_steps() - particle_steps_before;
+    s.steps = sim.steps() - steps_before;
+    s.solves.pressure = sim.solve_work().pressure - solves_before.pressure;
+    s.solves.pressure_iterations =
+        sim.solve_work().pressure_iterations - solves_before.pressure_iterations;
     for (const auto& e : sim.stage_times().entries()) {
         double earlier = 0;
         for (const auto& b : before)
@@ -338,6 +345,11 @@ int run_case(const FlowCase& c, const std::string& scenes, const std::vector<Con
             const double ns = stages[j].first * 1e9 / double(s.particle_steps);
             if (j < 4)
                 top += fmt::format("{}{} {:.0f}", j ? ", " : "", stages[j].second, ns);
+            // dfsph's density solve: iterations a step, ns a particle-iteration.
+            if (j < 4 && stages[j].second == "pressure solve" && s.solves.pressure > 0)
+                top += fmt::format(" ({:.1f} it x {:.1f})",
+                                   double(s.solves.pressure_iterations) / double(s.steps),
+                                   stages[j].first * 1e9 / double(s.solves.pressure));
             all += fmt::format("{}{}={:.1f}", j ? ";" : "", stages[j].second, ns);
         }
         const double ns_per_pair = neighbours > 0 ? 1e9 / m / neighbours : 0;

@@ -4,6 +4,7 @@
 // alone.
 #include "parallel/thread_count_tuner.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <functional>
 #include <map>
@@ -54,6 +55,30 @@ TEST_CASE("with a busy process on the machine the tuner steps with fewer threads
     CHECK(tuner.changes() == 1);
     // Found after the first two windows; 2 threads tried again now and then.
     CHECK(double(steps.at(2)) / double(steps.at(1)) < 0.05);
+}
+
+TEST_CASE("on a busy machine a try of more threads that plainly loses ends early", "[parallel]") {
+    ThreadCountTuner tuner(2);
+    // 2 threads at 0.3x of 1: a step at 2 threads takes 3.3 ms, a whole try
+    // window (0.1 s) 30 steps, a quarter of it 8.
+    int at_two = 0, longest = 0, tries = 0;
+    for (int k = 0; k < 40000; ++k) {
+        const int threads = tuner.threads();
+        tuner.record(1000 * (threads == 2 ? one_thread / 0.3 : one_thread), 1000);
+        if (threads == 2) {
+            ++at_two;
+            continue;
+        }
+        // The first window (at 2 threads, before anything is kept) is whole.
+        if (at_two > 0 && k > 100) {
+            longest = std::max(longest, at_two);
+            ++tries;
+        }
+        at_two = 0;
+    }
+    CHECK(tuner.threads() == 1);
+    REQUIRE(tries >= 5);
+    CHECK(longest <= 9);
 }
 
 TEST_CASE("a competing job that starts mid-run is found within a few windows", "[parallel]") {

@@ -25,7 +25,10 @@ void ThreadCountTuner::record(double seconds, std::uint64_t particle_steps) {
     window_particle_steps_ += particle_steps;
     // Tries are short: on a busy machine a try of more threads is slow.
     const double length = trying_ || first_window_ ? settings_.try_window_s : settings_.window_s;
-    if (window_seconds_ < length)
+    const bool lost_early =
+        trying_ && window_seconds_ >= settings_.abort_after * length &&
+        window_seconds_ > settings_.abort_slowdown * kept_cost_ * double(window_particle_steps_);
+    if (window_seconds_ < length && !lost_early)
         return;
     first_window_ = false;
     const double cost =

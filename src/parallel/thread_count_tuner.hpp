@@ -17,7 +17,8 @@
 // tried again after twice as many windows (up to max_interval), so a quiet
 // machine pays little for it; a window that costs far more than the last one
 // (a competing job started) makes the next window a try, once at least
-// first_interval windows have passed since the last try.
+// first_interval windows have passed since the last try. A try that is
+// plainly losing ends after a quarter of its window.
 
 #include <chrono>
 #include <cstdint>
@@ -35,6 +36,11 @@ class ThreadCountTuner {
         int max_interval = 128;    // ... at most, after tries that lost
         double margin = 0.08;      // a try must cost this fraction less to win
         double slowdown = 1.35;    // a window this much dearer than the last: try now
+        // A try that after this fraction of its window already costs
+        // abort_slowdown times the kept count's last window has lost: it
+        // ends there (on a busy machine a try of more threads costs 3x).
+        double abort_after = 0.25;
+        double abort_slowdown = 1.5;
     };
 
     // max_threads >= 1: the most threads a step may use.

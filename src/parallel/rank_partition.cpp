@@ -186,16 +186,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         // How far a step can move a particle (Verlet: half-kick, then drift)
         // widens every link of the chain, at both ends.
         Real v_max = 0, a_max = 0;
-        Vec<D> lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
         for (std::size_t i = 0; i < n; ++i) {
-            const Vec<D>& x = state.position[i];
-            bool finite = true;
-            for (int a = 0; a < D; ++a)
-                finite = finite && std::isfinite(x[a]);
-            if (!finite)
-                continue;
-            lo = glm::min(lo, x);
-            hi = glm::max(hi, x);
             v_max = std::max(v_max, std::sqrt(squared_length<D>(state.velocity[i])));
             a_max = std::max(a_max, std::sqrt(squared_length<D>(state.acceleration[i])));
         }
@@ -209,7 +200,23 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         local_index_.clear();
         if (begin == end)
             return; // owns nothing: steps nothing, needs no halo
+        // The grid covers the owned particles and `reach` around them (a
+        // particle outside it is farther than that from every owned one),
+        // not the whole fluid: with 2 ranks about half the cells.
+        Vec<D> lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
+        for (std::size_t i = begin; i < end; ++i) {
+            const Vec<D>& x = state.position[i];
+            bool finite = true;
+            for (int a = 0; a < D; ++a)
+                finite = finite && std::isfinite(x[a]);
+            if (!finite)
+                continue;
+            lo = glm::min(lo, x);
+            hi = glm::max(hi, x);
+        }
         const Real cell_size = reach / halo_subdivision;
+        lo -= Vec<D>(reach + cell_size);
+        hi += Vec<D>(reach + cell_size);
         std::size_t cells = 1;
         std::array<std::size_t, D> dims{};
         everyone = everyone || !(reach > 0) || !std::isfinite(reach) || !(lo[0] <= hi[0]);
@@ -227,14 +234,14 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
                 local_index_.push_back(static_cast<std::uint32_t>(i));
             return;
         }
+        // The cell holding x, false outside the grid.
         auto cell_of = [&](const Vec<D>& x, std::size_t& cell) {
             cell = 0;
             for (int a = D - 1; a >= 0; --a) {
-                if (!std::isfinite(x[a]))
-                    return false;
                 const Real u = (x[a] - lo[a]) / cell_size;
-                const std::size_t c = std::min(std::size_t(std::max(u, Real(0))), dims[a] - 1);
-                cell = cell * dims[a] + c;
+                if (!(u >= 0 && u < Real(dims[a])))
+                    return false;
+                cell = cell * dims[a] + std::size_t(u);
             }
             return true;
         };
@@ -245,25 +252,50 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         for (std::size_t i = begin; i < end; ++i)
             if (std::size_t c; cell_of(state.position[i], c))
                 near_[c] = 1;
-        std::size_t step = 1;
-        for (int a = 0; a < D; ++a) {
-            for (int layer = 0; layer < halo_subdivision; ++layer) {
-                grown_ = near_;
-                for (std::size_t c = 0; c < cells; ++c) {
-                    const std::size_t along = c / step % dims[a];
-                    if (along > 0)
-                        grown_[c] |= near_[c - step];
-                    if (along + 1 < dims[a])
-                        grown_[c] |= near_[c + step];
-                }
-                near_.swap(grown_);
-            }
-            step *= dims[a];
-        }
+        grow_cells(dims, halo_subdivision);
         for (std::size_t i = 0; i < n; ++i) {
             std::size_t c = 0;
             if ((i >= begin && i < end) || (cell_of(state.position[i], c) && near_[c]))
                 local_index_.push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+
+    // near_ grown by `layers` cells along each axis in turn: a cell is
+    // marked when a marked cell lies within `layers` of it along the axis,
+    // found by a sweep each way that keeps, for each line of cells, where
+    // the last marked one was (two passes an axis, no division: the grid
+    // holds 10^5-10^6 cells, and this runs every step).
+    void grow_cells(const std::array<std::size_t, D>& dims, int layers) {
+        const std::size_t cells = near_.size();
+        std::size_t step = 1; // cells between neighbours along axis a
+        for (int a = 0; a < D; ++a) {
+            const std::size_t length = dims[std::size_t(a)];
+            const std::ptrdiff_t reach = layers;
+            grown_.assign(cells, 0);
+            last_marked_.resize(step);
+            for (std::size_t base = 0; base < cells; base += step * length) {
+                std::fill(last_marked_.begin(), last_marked_.end(), -reach - 1);
+                for (std::size_t j = 0; j < length; ++j) {
+                    const std::size_t row = base + j * step;
+                    for (std::size_t k = 0; k < step; ++k) {
+                        if (near_[row + k])
+                            last_marked_[k] = std::ptrdiff_t(j);
+                        grown_[row + k] = std::ptrdiff_t(j) - last_marked_[k] <= reach;
+                    }
+                }
+                std::fill(last_marked_.begin(), last_marked_.end(),
+                          std::ptrdiff_t(length) + reach + 1);
+                for (std::size_t j = length; j-- > 0;) {
+                    const std::size_t row = base + j * step;
+                    for (std::size_t k = 0; k < step; ++k) {
+                        if (near_[row + k])
+                            last_marked_[k] = std::ptrdiff_t(j);
+                        grown_[row + k] |= last_marked_[k] - std::ptrdiff_t(j) <= reach;
+                    }
+                }
+            }
+            near_.swap(grown_);
+            step *= length;
         }
     }
 
@@ -452,6 +484,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     std::vector<std::size_t> first_;
     std::vector<std::uint32_t> local_index_;
     std::vector<std::uint8_t> near_, grown_;
+    std::vector<std::ptrdiff_t> last_marked_; // grow_cells: per line across a slab
     State<D> local_;
     std::vector<Real> send_, receive_;
     std::vector<int> counts_, displacements_;

@@ -185,12 +185,12 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         const std::size_t begin = first_[std::size_t(rank_)], end = first_[std::size_t(rank_) + 1];
         // How far a step can move a particle (Verlet: half-kick, then drift)
         // widens every link of the chain, at both ends.
-        Real v_max = 0, a_max = 0;
+        Real v2_max = 0, a2_max = 0;
         for (std::size_t i = 0; i < n; ++i) {
-            v_max = std::max(v_max, std::sqrt(squared_length<D>(state.velocity[i])));
-            a_max = std::max(a_max, std::sqrt(squared_length<D>(state.acceleration[i])));
+            v2_max = std::max(v2_max, squared_length<D>(state.velocity[i]));
+            a2_max = std::max(a2_max, squared_length<D>(state.acceleration[i]));
         }
-        const Real move = dt * v_max + dt * dt * a_max;
+        const Real move = dt * std::sqrt(v2_max) + dt * dt * std::sqrt(a2_max);
         // The float passes (solver.precision single) sum over every particle
         // of the 3^D cells around a particle's cell, a lane per candidate:
         // the same bits need the same candidates, every particle of the
@@ -235,10 +235,11 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             return;
         }
         // The cell holding x, false outside the grid.
+        const Real per_cell = 1 / cell_size; // h (1 + 1e-5) in `reach` covers its rounding
         auto cell_of = [&](const Vec<D>& x, std::size_t& cell) {
             cell = 0;
             for (int a = D - 1; a >= 0; --a) {
-                const Real u = (x[a] - lo[a]) / cell_size;
+                const Real u = (x[a] - lo[a]) * per_cell;
                 if (!(u >= 0 && u < Real(dims[a])))
                     return false;
                 cell = cell * dims[a] + std::size_t(u);

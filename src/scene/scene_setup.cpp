@@ -71,10 +71,13 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                   !scene.watchdog.max_speed.has_value()};
     p.reorder_every = scene.solver.reorder_every;
     p.precision = derived.precision;
-    // wcsph's alone; the other solvers sum their density (as they ignore
-    // solver.artificial_viscosity), so one tank scene serves every solver.
+    // Each solver reads only its own way of carrying the density (as the
+    // others ignore solver.artificial_viscosity), so one tank scene serves
+    // every solver: delta-SPH for wcsph, solver.density for dfsph.
     if (scene.solver.name == SolverKind::wcsph)
         p.density_diffusion = scene.solver.density_diffusion;
+    if (scene.solver.name == SolverKind::dfsph)
+        p.density_model = scene.solver.density;
     if (scene.solver.wall_pressure != WallPressure::mirror && scene.effects.gravity &&
         derived.walls == WallModel::particles) {
         p.wall_gravity = to_vec<D>(scene.effects.gravity->acceleration);

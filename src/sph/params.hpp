@@ -16,14 +16,22 @@ namespace sph {
 enum class Integrator { symplectic_euler, verlet };
 
 // The pressure a wall particle takes from the fluid particle beside it
-// (solver.wall_pressure): mirror, p_b = p_i; hydrostatic, p_b = p_i plus the
-// weight of the fluid between them, p_b = p_i + rho_i max(g . (x_b - x_i), 0)
-// (Adami et al. 2012, eq. 27's hydrostatic term, pair by pair; only walls
-// below the particle add: a wall above takes the mirrored pressure, which
-// never pulls the fluid onto it); extrapolated (wcsph), Adami et al. 2012's
+// (solver.wall_pressure): mirror, p_b = p_i; hydrostatic, the fluid's
+// hydrostatic pressure continued into the wall,
+// p_b = max(p_i + rho_i g . (x_b - x_i), 0) (Adami et al. 2012, eq. 27's
+// hydrostatic term, pair by pair: higher below the particle, lower above
+// it, never below zero, so a wall never pulls the fluid onto it; both sides
+// matter beside a side wall, docs/validation.md); extrapolated (wcsph), Adami et al. 2012's
 // whole eq. 27: a Shepard average of the fluid's pressures around the wall
 // particle plus the weight between (sph/wall_pressure.hpp).
 enum class WallPressure { mirror, hydrostatic, extrapolated };
+
+// The density dfsph's solves hold at rho0 (solver.density): summed over
+// the neighbours and walls each step (Akinci et al. 2012, eq. 6), or carried
+// by the continuity equation from step to step (the rate the density solve
+// predicts with), which has no deficit at a free surface (docs/validation.md,
+// "The 3D tank at rest").
+enum class DensityModel { summed, carried };
 
 // The solvers (solver.name), in the order of solver_names().
 enum class SolverKind { seed, wcsph, dfsph };
@@ -98,6 +106,8 @@ struct Params {
     // above 0 the density is carried by the continuity equation, at 0 it is
     // summed (solver.density_diffusion).
     Real density_diffusion = 0;
+    // dfsph: summed or carried (solver.density); the others ignore it.
+    DensityModel density_model = DensityModel::summed;
 
     Real sound_speed() const { return std::sqrt(bulk_modulus / rest_density); }
 };

@@ -12,6 +12,8 @@
 // the hydrostatic pressure. With solver.wall_pressure extrapolated the wall
 // particle has a pressure and density of its own (sph/wall_pressure.hpp):
 //   a_i -= sum_b rho0 V_b (p_i / rho_i^2 + p_b / rho_b^2) grad W_ib
+// and with solver.wall_pressure hydrostatic it takes the fluid particle's
+// density and p_b = max(p_i + rho_i g . (x_b - x_i), 0) (sph/params.hpp).
 // The viscosities the scene names join the same pass, which shares among
 // them the gathers of the neighbour's position, velocity and density, r and
 // the kernel's derivative (one pass over the pairs instead of up to three):
@@ -122,10 +124,13 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
                     Real factor = 2 * pi_over_rho2;
                     if constexpr (extrapolated)
                         factor = pi_over_rho2 + wall_pressure_term[b];
-                    // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise.
+                    // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise,
+                    // p_b = max(p_i + rho_i g . (x_b - x_i), 0).
                     else if constexpr (hydrostatic)
-                        factor += std::max(-glm::dot(params.wall_gravity, x_ib), Real(0)) /
-                                  state.density[i];
+                        factor = pi_over_rho2 +
+                                 std::max(pi_over_rho2 - glm::dot(params.wall_gravity, x_ib) /
+                                                             state.density[i],
+                                          Real(0));
                     if constexpr (artificial)
                         factor += Pi(glm::dot(v_ib, x_ib), 2 * state.density[i], r2);
                     Vec<D> term = -(params.rest_density * volume[b] * factor) *

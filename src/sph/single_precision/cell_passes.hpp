@@ -169,11 +169,13 @@ class CellPasses {
                         const float r = std::sqrt(r2);
                         const float g = kernel.dW_over_r(r);
                         const bool wall = l.wall[m] > 0;
-                        float factor = pt_i + (wall ? pt_i : l.pressure_term[m]);
-                        // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise.
+                        float p_b = pt_i;
+                        // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise,
+                        // p_b = max(p_i + rho_i g . (x_b - x_i), 0).
                         if constexpr (hydrostatic)
-                            factor += l.wall[m] * std::max(-glm::dot(wall_gravity, x_ij), 0.f) *
-                                      inverse_rho_i;
+                            p_b =
+                                std::max(pt_i - glm::dot(wall_gravity, x_ij) * inverse_rho_i, 0.f);
+                        float factor = pt_i + (wall ? p_b : l.pressure_term[m]);
                         if constexpr (artificial)
                             factor += Pi(v_dot_x, rho_i + (wall ? rho_i : l.density[m]), r2);
                         const float pressure = -l.mass[m] * factor * g;

@@ -36,7 +36,10 @@ template <class Kernel>
 void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
                              State<D>& state) {
     const std::size_t n = state.size();
-    find_neighbours_and_density(params, kernel, context, state);
+    if (params.density_model == DensityModel::carried)
+        find_neighbours_and_carried_density(params, kernel, context, state);
+    else
+        find_neighbours_and_density(params, kernel, context, state);
 
     auto timed = context.time(Stage::pressure_solve);
     factor_.resize(n);
@@ -240,10 +243,21 @@ void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>&
 }
 
 // The walls' pressure with its hydrostatic rise (solver.wall_pressure):
-// p_b = p_i + rho_i max(g . (x_b - x_i), 0). The mirrored part is the solves'
-// 2 s_i (correct_velocities); the rise does not depend on the solve, so it is
-// a force known before it, a_i = -sum_b rho0 V_b (p_b - p_i) / rho_i^2 grad W_ib,
-// and the density solve then removes what it still compresses.
+// p_b = max(p_i + rho_i g . (x_b - x_i), 0), Adami et al. 2012's eq. 27
+// taken pair by pair: the fluid's hydrostatic pressure continued into the
+// wall, higher below the particle and lower above it, never below zero (a
+// wall does not pull). The mirrored part is the solves' 2 s_i
+// (correct_velocities); the rise does not depend on the solve, so it is a
+// force known before it, a_i = -sum_b rho0 V_b (p_b - p_i) / rho_i^2 grad W_ib,
+// and the density solve then removes what it still compresses. The floor
+// at zero needs p_i, which this step's solve has not found yet: the last
+// density solve's stands in for it (the same at rest; zero at the first
+// step).
+// Both sides matter: beside a side wall the rise below and the fall above
+// together hold the fluid up as the fluid beyond would; the rise alone
+// (the walls below only) held it half as much and pushed it off the wall
+// with a force that changes with height, which stirred the 3D tank at
+// 1-2 cm/s (docs/validation.md, "The 3D tank at rest").
 template <int D>
 void DfsphSolver<D>::add_wall_weight(const Params<D>& params, const StepContext<D>& context,
                                      State<D>& state) const {
@@ -252,11 +266,16 @@ void DfsphSolver<D>::add_wall_weight(const Params<D>& params, const StepContext<
     const auto xb = context.boundary->positions();
     const std::span<const Vec<D>> wall_gradient = wall_gradient_;
     const Vec<D> g = params.wall_gravity;
+    // p_i / rho_i = rho_i s_i / dt of the last density solve, where there is one.
+    const bool known = previous_dt_ > 0 && previous_stiffness_.size() == n;
+    const std::span<const Real> stiffness = previous_stiffness_;
+    const Real last_dt = previous_dt_;
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         const Vec<D> x_i = state.position[i];
+        const Real p_over_rho = known ? state.density[i] * stiffness[i] / last_dt : 0;
         const Vec<D> a = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
-            return std::max(-glm::dot(g, x_i - xb[b]), Real(0)) * wall_gradient[e];
+            return std::max(-glm::dot(g, x_i - xb[b]), -p_over_rho) * wall_gradient[e];
         });
         state.acceleration[i] -= a / state.density[i];
     }
@@ -349,6 +368,18 @@ StepReport DfsphSolver<D>::step_in_pieces(const Params<D>& params, Real dt, int 
             state.pressure[i] =
                 state.density[i] * state.density[i] * (stiffness_sum_[i] + divergence_sum_[i]) / dt;
     }
+    // solver.density = carried: the continuity equation over the step
+    // (after the pressure output, which is in this step's density),
+    // rho += dt D rho / Dt with the velocities the density solve ended with,
+    // which is the density it predicted, rho0 + dt * source.
+    if (params.density_model == DensityModel::carried) {
+        auto timed = context.time(Stage::pressure_solve);
+        const std::size_t n = state.size();
+        const Real rho0 = params.rest_density;
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i)
+            state.density[i] = rho0 + dt * source_[i];
+    }
     previous_dt_ = dt;
     // 5. Move; the boundaries keep the particles out as a last guard, behind
     // the boundary particles.
@@ -363,9 +394,13 @@ StepReport DfsphSolver<D>::step_in_pieces(const Params<D>& params, Real dt, int 
 template <int D>
 void DfsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
                                    StepContext<D>& context) {
-    // Density at the current positions; pressure stays the last solve's.
+    // Density at the current positions (or the carried one); pressure stays
+    // the last solve's.
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
-        find_neighbours_and_density(params, kernel, context, state);
+        if (params.density_model == DensityModel::carried)
+            find_neighbours_and_carried_density(params, kernel, context, state);
+        else
+            find_neighbours_and_density(params, kernel, context, state);
     });
 }
 

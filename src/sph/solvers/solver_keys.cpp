@@ -68,6 +68,14 @@ const KeyTable<SolverSettings>& solver_keys() {
                 "in double precision; 0: summed. The other solvers sum their density and ignore "
                 "it.",
          .bound = Bound::non_negative},
+        {.path = "density",
+         .field = enum_field<&S::density>(),
+         .doc = "dfsph: the density its solves hold at the rest density: summed (over the "
+                "neighbours and wall particles each step) or carried (by the continuity "
+                "equation, at the rate the density solve predicts, from the summed one but not "
+                "below the rest density: no deficit at a free surface). The other solvers "
+                "ignore it (wcsph carries its density with solver.density_diffusion).",
+         .choices = {"summed", "carried"}},
         {.path = "artificial_viscosity",
          .field = &S::artificial_viscosity,
          .doc = "Alpha of Monaghan's artificial viscosity (wcsph).",

@@ -39,6 +39,8 @@ struct SolverSettings {
     WallPressure wall_pressure = WallPressure::mirror;
     // wcsph: delta of delta-SPH (Antuono et al. 2010); 0: the density summed.
     double density_diffusion = 0;
+    // dfsph: summed | carried (sph/params.hpp)
+    DensityModel density = DensityModel::summed;
 };
 
 // The keys of `solver`, in the order `sphclip keys` lists them.

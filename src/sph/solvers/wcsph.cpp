@@ -15,30 +15,6 @@ namespace sph {
 
 namespace {
 
-// The carried density (solver.density_diffusion): the neighbours, and the
-// density of particles that have none yet (the start, an emitter's new
-// ones: density 0) from the summation, but not below rho0, which a particle
-// at a free surface sums to for want of neighbours. The step advances it
-// (advance_carried).
-template <int D, class Kernel>
-void carried_density(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
-                     State<D>& state) {
-    context.find_neighbours(state.position, params.h);
-    const std::size_t n = state.size();
-    if (std::any_of(state.density.begin(), state.density.end(),
-                    [](Real rho) { return rho <= 0; })) {
-        auto timed = context.time(Stage::density);
-        std::vector<Real> carried = state.density;
-        compute_density(params, kernel, context.neighbours, state);
-        if (context.boundary)
-            add_boundary_density(params, kernel, *context.boundary, context.boundary_neighbours,
-                                 state);
-        for (std::size_t i = 0; i < n; ++i)
-            state.density[i] =
-                carried[i] > 0 ? carried[i] : std::max(state.density[i], params.rest_density);
-    }
-}
-
 // Density by summation over fluid and wall particles: in double on
 // neighbour lists, or in float on grid cells.
 template <int D, class Kernel>
@@ -92,7 +68,7 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
         // 1. Neighbours, density (fluid + walls, summed, or carried:
         // advance_carried), p = B ((rho / rho0)^7 - 1).
         if (params.density_diffusion > 0) {
-            carried_density(params, kernel, context, state);
+            find_neighbours_and_carried_density(params, kernel, context, state);
             pressure(params, context, state);
         } else
             density_and_pressure(params, kernel, context, single, state);
@@ -130,7 +106,7 @@ void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
     SinglePasses<D>* single = params.precision == Precision::single ? &single_passes() : nullptr;
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         if (params.density_diffusion > 0) {
-            carried_density(params, kernel, context, state);
+            find_neighbours_and_carried_density(params, kernel, context, state);
             if (context.output_pressure)
                 pressure(params, context, state);
         } else if (context.output_pressure)

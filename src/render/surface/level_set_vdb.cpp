@@ -19,6 +19,7 @@
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tools/VolumeToMesh.h>
+#include <openvdb/tree/LeafManager.h>
 #include <stdexcept>
 #include <system_error>
 
@@ -82,11 +83,18 @@ void drop_deep_inside(openvdb::FloatGrid& grid, int half_width) {
                                        openvdb::tools::NN_FACE_EDGE_VERTEX,
                                        openvdb::tools::IGNORE_TILES);
     const float inside = -grid.background();
-    openvdb::tools::foreach (grid.beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& v) {
-        if (*v <= 0 && !near_outside.tree().isValueOn(v.getCoord())) {
-            v.setValue(inside);
-            v.setValueOff();
-        }
+    // A leaf at a time on each thread: setValueOff writes the leaf's mask,
+    // which two threads must not share.
+    openvdb::tree::LeafManager<openvdb::FloatTree> leaves(grid.tree());
+    leaves.foreach ([&](openvdb::FloatTree::LeafNodeType& leaf, std::size_t) {
+        const auto* near = near_outside.tree().probeConstLeaf(leaf.origin());
+        // No leaf there: the mask holds the region as one tile, on or off.
+        const bool all_near = !near && near_outside.tree().isValueOn(leaf.origin());
+        for (auto v = leaf.beginValueOn(); v; ++v)
+            if (*v <= 0 && !all_near && !(near && near->isValueOn(v.pos()))) {
+                v.setValue(inside);
+                v.setValueOff();
+            }
     });
     openvdb::tools::pruneLevelSet(grid.tree());
 }

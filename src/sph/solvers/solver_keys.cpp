@@ -54,8 +54,9 @@ const KeyTable<SolverSettings>& solver_keys() {
          .field = enum_field<&S::wall_pressure>(),
          .doc = "Pressure of the boundary particles (wcsph, dfsph): mirror (the fluid particle's "
                 "own, p_b = p_i) or hydrostatic (plus the weight of the fluid between them, "
-                "p_b = p_i + rho_i g . (x_b - x_i) for a wall below, Adami et al. 2012), so that "
-                "the layers at a floor are not compressed beyond the hydrostatic pressure; or "
+                "p_b = max(p_i + rho_i g . (x_b - x_i), 0) for every wall, Adami et al. 2012), so "
+                "that the layers at a floor are not compressed beyond the hydrostatic pressure "
+                "and a side wall holds the fluid as fluid would; or "
                 "extrapolated (wcsph: Adami et al. 2012's eq. 27 whole, the Shepard average of "
                 "the fluid's pressures around the wall particle plus that weight; double "
                 "precision).",

@@ -89,8 +89,7 @@ std::string plot_commands(const StudyReport& report) {
     const auto ticks = [](double lo, double hi) {
         const auto in_range = [&](std::initializer_list<double> mantissas) {
             std::vector<std::string> values;
-            for (int k = int(std::floor(std::log10(lo))); k <= int(std::ceil(std::log10(hi)));
-                 ++k)
+            for (int k = int(std::floor(std::log10(lo))); k <= int(std::ceil(std::log10(hi))); ++k)
                 for (double m : mantissas)
                     if (const double v = m * std::pow(10.0, k); v >= lo && v <= hi)
                         values.push_back(fmt::format("{:g}", v));

@@ -146,10 +146,18 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
             }
             if (blocked_by_obstacle<D>(obstacles, x, s))
                 continue;
-            if (law != StartLaw::none)
+            // 0: the first step sums it; a hydrostatic start gives the
+            // density the site carries (read where the density is carried).
+            Real density = 0;
+            if (law != StartLaw::none) {
+                density =
+                    hydrostatic_density(law, top - glm::dot(x, up), g, scene.material.rest_density,
+                                        scene.material.bulk_modulus);
                 x = hydrostatic_site<D>(x, up, top, bottom, law, g, scene.material.rest_density,
                                         scene.material.bulk_modulus);
+            }
             state.position[next] = x;
+            state.density[next] = density;
             state.velocity[next] = to_vec<D>(block.velocity);
             state.acceleration[next] = Vec<D>(0);
             state.id[next] = static_cast<std::uint32_t>(next);

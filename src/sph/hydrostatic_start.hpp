@@ -43,6 +43,20 @@ inline Real compressed_depth(StartLaw law, Real zeta, Real g, Real rho0, Real K)
     return (7 * B / (6 * weight)) * (std::pow(1 + weight * zeta / B, Real(6) / 7) - 1);
 }
 
+// The density of a particle at rest depth zeta, rho(p) at p = rho0 |g| zeta:
+// the start of a carried density (wcsph's delta-SPH), which a summation
+// would give short at the floor's first rows, where the wall particles, not
+// compressed with the lattice, make a third of the sum (measured: the bottom
+// row at 72% of its pressure, pulled down at 2.4 g; docs/validation.md).
+inline Real hydrostatic_density(StartLaw law, Real zeta, Real g, Real rho0, Real K) {
+    if (law == StartLaw::none || g <= 0 || zeta <= 0)
+        return rho0;
+    const Real p = rho0 * g * zeta;
+    if (law == StartLaw::linear)
+        return rho0 * (1 + p / K);
+    return rho0 * std::pow(1 + p / (K / 7), Real(1) / 7);
+}
+
 // The lattice site x of a block whose highest point along `up` is at height
 // `top` and lowest at `bottom`: moved down along `up` so that the block's
 // lowest point stays where it is and every site above it sits at its

@@ -283,14 +283,20 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     void select_local(const Params<D>& params, Real dt, const State<D>& state, bool everyone) {
         const std::size_t n = state.size();
         const std::size_t begin = first_[std::size_t(rank_)], end = first_[std::size_t(rank_) + 1];
-        // How far a step can move a particle (Verlet: half-kick, then drift)
-        // widens every link of the chain, at both ends.
-        Real v2_max = 0, a2_max = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            v2_max = std::max(v2_max, squared_length<D>(state.velocity[i]));
-            a2_max = std::max(a2_max, squared_length<D>(state.acceleration[i]));
+        // How far a Verlet step moves a particle before its forces (half-kick,
+        // then drift) widens every link of the chain, at both ends. The other
+        // steps (symplectic Euler; dfsph, whose redone halves are steps of
+        // their own) find every neighbour where the particles are at their
+        // start and move them only at their end: no allowance.
+        Real move = 0;
+        if (params.integrator == Integrator::verlet) {
+            Real v2_max = 0, a2_max = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                v2_max = std::max(v2_max, squared_length<D>(state.velocity[i]));
+                a2_max = std::max(a2_max, squared_length<D>(state.acceleration[i]));
+            }
+            move = dt * std::sqrt(v2_max) + dt * dt * std::sqrt(a2_max);
         }
-        const Real move = dt * std::sqrt(v2_max) + dt * dt * std::sqrt(a2_max);
         // The float passes (solver.precision single) sum over every particle
         // of the 3^D cells around a particle's cell, a lane per candidate:
         // the same bits need the same candidates, every particle of the

@@ -677,6 +677,12 @@ std::unique_ptr<Partition<D>> make_rank_partition(const Params<D>& params,
     for (const auto& effect : effects)
         if (dynamic_cast<const SurfaceTension<D>*>(effect.get()))
             hops = 2; // ... or normals from densities, then forces from normals
+    // ... then, with wcsph's carried density (solver.density_diffusion), its
+    // rate, which reads the neighbours' velocities after the kick (from
+    // their forces) and their renormalised density gradients (from their
+    // own neighbours). dfsph's sums exchange what they read instead.
+    if (params.density_diffusion > 0)
+        ++hops;
     return std::make_unique<RankPartition<D>>(hops, single);
 }
 

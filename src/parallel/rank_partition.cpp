@@ -683,6 +683,11 @@ std::unique_ptr<Partition<D>> make_rank_partition(const Params<D>& params,
     // own neighbours). dfsph's sums exchange what they read instead.
     if (params.density_diffusion > 0)
         ++hops;
+    // The walls' extrapolated pressure (wcsph's solver.wall_pressure
+    // extrapolated) is a sum over the fluid around each wall particle, which
+    // a wall particle beside an owned one has up to a support radius further.
+    if (params.wall_pressure == WallPressure::extrapolated)
+        ++hops;
     return std::make_unique<RankPartition<D>>(hops, single);
 }
 

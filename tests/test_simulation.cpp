@@ -392,8 +392,15 @@ TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][
                                      "xsph": {"epsilon": 0.3}})"}}) ==
           Names{"boundary neighbours", "density", "integration", "neighbour search", "pressure",
                 "reorder", "time step", "viscosity", "walls", "watchdog", "xsph"});
-    // dfsph without viscosity: its two solves, no viscosity stage.
+    // dfsph without viscosity: its two solves and its default artificial
+    // viscosity, an effect of its own; with alpha 0, no viscosity stage.
     CHECK(stages_of({{"solver.name", "dfsph"}, {"material.viscosity", "0"}}) ==
+          Names{"artificial_viscosity", "boundary neighbours", "density", "divergence solve",
+                "gravity", "integration", "neighbour search", "pressure solve", "reorder",
+                "time step", "walls", "watchdog"});
+    CHECK(stages_of({{"solver.name", "dfsph"},
+                     {"material.viscosity", "0"},
+                     {"solver.artificial_viscosity", "0"}}) ==
           Names{"boundary neighbours", "density", "divergence solve", "gravity", "integration",
                 "neighbour search", "pressure solve", "reorder", "time step", "walls", "watchdog"});
 }
@@ -425,10 +432,8 @@ TEST_CASE("the stage table names each obstacle, paddle and emitter the scene dec
                                                        {"effects", obstacle_and_paddle}}));
         for (int k = 0; k < 3; ++k)
             sim.step();
-        Names declared{"gravity", "obstacles", "paddles", "walls"};
-        if (std::string(solver) ==
-            "wcsph") // its default artificial viscosity, in its pressure pass
-            declared.insert(declared.begin(), "artificial_viscosity");
+        // Both solvers' default artificial viscosity (wcsph's in its pressure pass).
+        const Names declared{"artificial_viscosity", "gravity", "obstacles", "paddles", "walls"};
         CHECK(parts_of(sim.stage_times()) == declared);
         for (const auto& e : sim.stage_times().entries())
             if (e.name == "obstacles" || e.name == "paddles") {

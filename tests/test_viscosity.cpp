@@ -100,8 +100,12 @@ TEST_CASE("the scene gets the viscosity effects it asks for", "[viscosity][effec
     }
     // An inviscid fluid: no viscosity stage.
     CHECK(effect_names(effects_of({{"material.viscosity", "0"}})) == Names{"gravity"});
+    // dfsph keeps its default artificial viscosity (water at rest needs it).
     CHECK(effect_names(effects_of({{"solver.name", "dfsph"}, {"material.viscosity", "0"}})) ==
-          Names{"gravity"});
+          Names{"gravity", "artificial_viscosity"});
+    CHECK(effect_names(effects_of({{"solver.name", "dfsph"},
+                                   {"material.viscosity", "0"},
+                                   {"solver.artificial_viscosity", "0"}})) == Names{"gravity"});
     // effects.viscosity picks the model and mu; artificial viscosity and XSPH
     // on any solver, or off with a zero coefficient.
     {

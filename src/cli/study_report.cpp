@@ -83,13 +83,21 @@ std::string plot_commands(const StudyReport& report) {
     text += fmt::format("set xrange [{:.6g}:{:.6g}]\nset yrange [{:.6g}:{:.6g}]\n", wall_min / 1.6,
                         wall_max * 1.6, error_min / 1.6, error_max * 1.6);
     // Labelled ticks at 1, 2 and 5 times each power of ten in range (decade
-    // ticks alone would leave one or two labels on a short axis).
+    // ticks alone would leave one or two labels on a short axis); an axis
+    // under a decade or so, which that leaves with fewer than four labels
+    // (0.1 and 0.2 for errors from 0.09 to 0.24), gets 1.5, 3 and 7 too.
     const auto ticks = [](double lo, double hi) {
-        std::vector<std::string> values;
-        for (int k = int(std::floor(std::log10(lo))); k <= int(std::ceil(std::log10(hi))); ++k)
-            for (double m : {1.0, 2.0, 5.0})
-                if (const double v = m * std::pow(10.0, k); v >= lo && v <= hi)
-                    values.push_back(fmt::format("{:g}", v));
+        const auto in_range = [&](std::initializer_list<double> mantissas) {
+            std::vector<std::string> values;
+            for (int k = int(std::floor(std::log10(lo))); k <= int(std::ceil(std::log10(hi))); ++k)
+                for (double m : mantissas)
+                    if (const double v = m * std::pow(10.0, k); v >= lo && v <= hi)
+                        values.push_back(fmt::format("{:g}", v));
+            return values;
+        };
+        std::vector<std::string> values = in_range({1.0, 2.0, 5.0});
+        if (values.size() < 4)
+            values = in_range({1.0, 1.5, 2.0, 3.0, 5.0, 7.0});
         return fmt::format("({})", fmt::join(values, ", "));
     };
     text += fmt::format("set xtics {}\nset ytics {}\n", ticks(wall_min / 1.6, wall_max * 1.6),

@@ -6,7 +6,7 @@
 // with h the support radius and c the sound speed. It damps the noise a
 // weakly compressible fluid rings with, at the price of some extra
 // dissipation. The scene's `effects.artificial_viscosity` (and the older
-// `solver.artificial_viscosity`, on by default for wcsph).
+// `solver.artificial_viscosity`, on by default for wcsph and dfsph).
 
 #include "sph/effects/effect.hpp"
 #include "sph/kernels.hpp"
@@ -24,7 +24,7 @@ struct ArtificialViscositySettings {
     // The scene's default: solver.artificial_viscosity.
     double alpha = 0;
     // Without the key, solver.artificial_viscosity, on for a solver that
-    // declares it its default (wcsph) where alpha > 0.
+    // declares it its default (wcsph, dfsph) where alpha > 0.
     template <class Scene>
     static ArtificialViscositySettings defaults(const Scene& scene) {
         return {scene.solver.artificial_viscosity};
@@ -46,8 +46,8 @@ inline const KeyTable<ArtificialViscositySettings>& artificial_viscosity_keys() 
         {.path = "alpha",
          .field = &ArtificialViscositySettings::alpha,
          .doc = "Artificial viscosity effect (Monaghan 1992), its alpha; default "
-                "solver.artificial_viscosity. Without the key, wcsph uses "
-                "solver.artificial_viscosity and the other solvers none.",
+                "solver.artificial_viscosity. Without the key, wcsph and dfsph use "
+                "solver.artificial_viscosity and the seed none.",
          .bound = Bound::non_negative},
     };
     return keys;

@@ -24,8 +24,16 @@
 namespace sph {
 
 // Incompressible: no sound condition on the step; its own integration scheme.
-inline constexpr SolverCapabilities dfsph_capabilities{
-    .name = "dfsph", .kind = SolverKind::dfsph, .carries_sound = false, .supports_verlet = false};
+// Monaghan's artificial viscosity on by default, as in wcsph and with its
+// alpha h c (c from material.bulk_modulus, so one scene dissipates alike in
+// both): without it water (1e-3 Pa.s, nothing resolved damps) at rest boils
+// from the noise each step's solve leaves, and blew up in a 2D tank within
+// 1 s; the 3D tank moved at 0.15 m/s (docs/validation.md, "Water at rest").
+inline constexpr SolverCapabilities dfsph_capabilities{.name = "dfsph",
+                                                       .kind = SolverKind::dfsph,
+                                                       .carries_sound = false,
+                                                       .supports_verlet = false,
+                                                       .default_artificial_viscosity = true};
 
 template <int D>
 class DfsphSolver final : public Solver<D> {

@@ -79,7 +79,7 @@ const KeyTable<SolverSettings>& solver_keys() {
          .choices = {"summed", "carried"}},
         {.path = "artificial_viscosity",
          .field = &S::artificial_viscosity,
-         .doc = "Alpha of Monaghan's artificial viscosity (wcsph).",
+         .doc = "Alpha of Monaghan's artificial viscosity (wcsph and dfsph).",
          .bound = Bound::non_negative},
         {.path = "tolerance",
          .field = &S::tolerance,

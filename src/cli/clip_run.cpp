@@ -159,8 +159,8 @@ class ClipRun {
                     options.progress_interval_s) {
         // Over MPI ranks, each step shared out (docs/mpi.md); rank 0 alone
         // has sinks and writes run.json.
-        sim_.set_partition(parallel::make_rank_partition<D>(sim_.params(), sim_.solver().name(),
-                                                            sim_.effects(), scene.file));
+        sim_.set_partition(
+            parallel::make_rank_partition<D>(sim_.params(), sim_.effects(), scene.file));
         if (leader_)
             add_sinks(std::move(gl_context));
         // Only the fields some sink reads are computed for output and copied

@@ -26,13 +26,16 @@ namespace {
 // is exact, only slower.
 constexpr std::size_t max_cells_per_particle = 64;
 // After each rank's results in the gather: its owned + halo count, its
-// solver seconds and the halo bytes it received, so the balance and the
-// traffic are measured without another message.
-constexpr std::size_t trailer = 3;
+// solver seconds, the halo bytes it received and which of the solver's kept
+// arrays it filled (a bit each), so the balance and the traffic are measured
+// without another message.
+constexpr std::size_t trailer = 4;
 // Point-to-point tags: a rank's halo request (the particles it needs from
-// an owner), then each exchange of their densities in the step.
+// an owner), each exchange of their values in the step, and a sum in
+// particle order passed on to the next rank.
 constexpr int request_tag = 24;
-constexpr int densities_tag = 25;
+constexpr int values_tag = 25;
+constexpr int sum_tag = 26;
 // Halo cells per reach along an axis: the halo is the owned particles' cells
 // grown by this many cells, so it holds particles up to (1 + 1 / 3) reach
 // away rather than 2 reaches with cells as large as the reach.
@@ -73,13 +76,14 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         }
         if (auto* explicit_solver = dynamic_cast<ExplicitSolver<D>*>(&solver))
             explicit_solver->set_accelerations_current(current, local_.size());
+        const std::span<std::vector<Real>* const> kept = solver.kept_arrays();
+        localise_kept(kept);
         const auto start = std::chrono::steady_clock::now();
-        // A rank that owns nothing (fewer particles than ranks) steps
-        // nothing; it holds no halo either, so no rank exchanges with it.
+        // A rank that owns nothing (fewer particles than ranks) steps an
+        // empty state: it holds no halo, so no rank exchanges with it, but
+        // it takes part in the solves' sums over all particles (dfsph).
         context.halo = this;
-        StepReport report = first_[std::size_t(rank_) + 1] > first_[std::size_t(rank_)]
-                                ? solver.step(params, dt, local_, context)
-                                : StepReport{};
+        StepReport report = solver.step(params, dt, local_, context);
         context.halo = nullptr;
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -87,7 +91,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         stepped_size_ = n;
         {
             auto timed = context.time(Stage::rank_gather);
-            share_results(state, seconds);
+            share_results(state, seconds, kept);
         }
         // Each rank's pushes, halo included: a particle near a rank's edge is
         // pushed on every rank that holds it (docs/mpi.md).
@@ -101,39 +105,64 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     // (non-blocking): each rank sends its owned particles that another
     // rank's halo holds, as that rank asked in plan_halo().
     void share_densities(State<D>& state) override {
-        const auto p = std::size_t(ranks_);
-        give_values_.resize(2 * give_index_.size());
-        for (std::size_t k = 0; k < give_index_.size(); ++k) {
-            give_values_[2 * k] = state.density[give_index_[k]];
-            give_values_[2 * k + 1] = state.pressure[give_index_[k]];
-        }
-        need_values_.resize(2 * (local_.size() - owned_in_local_));
-        requests_.clear();
-        std::size_t at = 0;
-        for (std::size_t s = 0; s < p; ++s) {
-            if (need_[s] == 0)
-                continue;
-            requests_.emplace_back();
-            MPI_Irecv(need_values_.data() + at, int(2 * need_[s]), MPI_DOUBLE, int(s),
-                      densities_tag, MPI_COMM_WORLD, &requests_.back());
-            at += 2 * std::size_t(need_[s]);
-        }
-        for (std::size_t r = 0; r < p; ++r) {
-            if (give_[r] == 0)
-                continue;
-            requests_.emplace_back();
-            MPI_Isend(give_values_.data() + 2 * give_first_[r], int(2 * give_[r]), MPI_DOUBLE,
-                      int(r), densities_tag, MPI_COMM_WORLD, &requests_.back());
-        }
-        MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
-        at = 0;
-        for (std::size_t s = 0; s < p; ++s)
-            for (int k = 0; k < need_[s]; ++k, at += 2) {
-                const std::size_t j = need_first_[s] + std::size_t(k);
-                state.density[j] = need_values_[at];
-                state.pressure[j] = need_values_[at + 1];
-            }
-        step_halo_bytes_ += double(at * sizeof(Real));
+        exchange(
+            2,
+            [&](std::size_t k, Real* out) {
+                out[0] = state.density[k];
+                out[1] = state.pressure[k];
+            },
+            [&](std::size_t j, const Real* in) {
+                state.density[j] = in[0];
+                state.pressure[j] = in[1];
+            });
+    }
+
+    // An iterative solve's values (dfsph's stiffnesses and velocities, each
+    // iteration), the same way.
+    void share(std::span<Real> values) override {
+        const auto start = std::chrono::steady_clock::now();
+        exchange(
+            1, [&](std::size_t k, Real* out) { out[0] = values[k]; },
+            [&](std::size_t j, const Real* in) { values[j] = in[0]; });
+        solve_exchange_seconds_ += seconds_since(start);
+    }
+    void share(std::span<Vec<D>> values) override {
+        const auto start = std::chrono::steady_clock::now();
+        exchange(
+            D,
+            [&](std::size_t k, Real* out) {
+                for (int a = 0; a < D; ++a)
+                    out[a] = values[k][a];
+            },
+            [&](std::size_t j, const Real* in) {
+                for (int a = 0; a < D; ++a)
+                    values[j][a] = in[a];
+            });
+        solve_exchange_seconds_ += seconds_since(start);
+    }
+
+    std::size_t owned_begin() const override { return owned_offset_; }
+    std::size_t owned_end() const override { return owned_offset_ + owned_in_local_; }
+    std::size_t total_particles() const override { return first_[std::size_t(ranks_)]; }
+
+    // A sum in particle order: the ranges follow the memory order, so rank
+    // r continues the sum of ranks 0 .. r - 1 and passes it on; the last
+    // rank's is the whole sum, the same bits as one process's. The ranks
+    // add one after the other, N additions in all, as one process does.
+    Real sum_before() override {
+        sum_start_ = std::chrono::steady_clock::now();
+        Real sum = 0;
+        if (rank_ > 0)
+            MPI_Recv(&sum, 1, MPI_DOUBLE, rank_ - 1, sum_tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        return sum;
+    }
+    Real finish_sum(Real sum) override {
+        if (rank_ + 1 < ranks_)
+            MPI_Send(&sum, 1, MPI_DOUBLE, rank_ + 1, sum_tag, MPI_COMM_WORLD);
+        MPI_Bcast(&sum, 1, MPI_DOUBLE, ranks_ - 1, MPI_COMM_WORLD);
+        solve_exchange_seconds_ += seconds_since(sum_start_);
+        ++sums_;
+        return sum;
     }
 
     nlohmann::json report() const override {
@@ -148,6 +177,10 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
              "all-gathered"},
             {"halo_support_radii", hops_},
             {"halo_bytes_received_per_step", halo_bytes_ / steps / ranks_},
+            // dfsph: its iterations' exchanges and sums in particle order
+            // (rank 0's time in them, waiting included).
+            {"solve_exchange_seconds", solve_exchange_seconds_},
+            {"sums_in_particle_order", sums_},
             {"steps", steps_},
             {"owned_per_rank", last_owned_},
             {"owned_and_halo_per_rank", last_local_},
@@ -168,8 +201,75 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         };
     }
 
+    // The whole state's kept arrays follow the reorder as the solver's own
+    // do in one process.
+    void permute(std::span<const std::uint32_t> order) override {
+        for (std::vector<Real>& whole : kept_whole_)
+            if (whole.size() == order.size())
+                sph::permute(whole, order, permute_scratch_);
+    }
+
   private:
-    static constexpr std::size_t stride = 3 * D + 2; // x, v, a, rho, p
+    // Per particle in the gather: x, v, a, rho, p, then the solver's kept arrays.
+    static constexpr std::size_t state_stride = 3 * D + 2;
+
+    static double seconds_since(std::chrono::steady_clock::time_point start) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    // Values of the owned particles that other ranks' halos hold, `width`
+    // a particle: pack(k, out) writes local particle k's, unpack(j, in)
+    // stores halo particle j's from its owner.
+    template <class Pack, class Unpack>
+    void exchange(std::size_t width, Pack pack, Unpack unpack) {
+        const auto p = std::size_t(ranks_);
+        give_values_.resize(width * give_index_.size());
+        for (std::size_t k = 0; k < give_index_.size(); ++k)
+            pack(give_index_[k], give_values_.data() + width * k);
+        need_values_.resize(width * (local_.size() - owned_in_local_));
+        requests_.clear();
+        std::size_t at = 0;
+        for (std::size_t s = 0; s < p; ++s) {
+            if (need_[s] == 0)
+                continue;
+            requests_.emplace_back();
+            MPI_Irecv(need_values_.data() + at, int(width * std::size_t(need_[s])), MPI_DOUBLE,
+                      int(s), values_tag, MPI_COMM_WORLD, &requests_.back());
+            at += width * std::size_t(need_[s]);
+        }
+        for (std::size_t r = 0; r < p; ++r) {
+            if (give_[r] == 0)
+                continue;
+            requests_.emplace_back();
+            MPI_Isend(give_values_.data() + width * give_first_[r],
+                      int(width * std::size_t(give_[r])), MPI_DOUBLE, int(r), values_tag,
+                      MPI_COMM_WORLD, &requests_.back());
+        }
+        MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+        at = 0;
+        for (std::size_t s = 0; s < p; ++s)
+            for (int k = 0; k < need_[s]; ++k, at += width)
+                unpack(need_first_[s] + std::size_t(k), need_values_.data() + at);
+        step_halo_bytes_ += double(at * sizeof(Real));
+    }
+
+    // The solver's kept arrays for the particles this step holds, from the
+    // whole state's; empty where the whole state has none (the first step,
+    // new particles), as the solver's own would be in one process.
+    void localise_kept(std::span<std::vector<Real>* const> kept) {
+        kept_whole_.resize(kept.size());
+        for (std::size_t a = 0; a < kept.size(); ++a) {
+            std::vector<Real>& local = *kept[a];
+            const std::vector<Real>& whole = kept_whole_[a];
+            if (whole.size() != first_[std::size_t(ranks_)]) {
+                local.clear();
+                continue;
+            }
+            local.resize(local_index_.size());
+            for (std::size_t k = 0; k < local_index_.size(); ++k)
+                local[k] = whole[local_index_[k]];
+        }
+    }
 
     // Rank r owns [first_[r], first_[r + 1]).
     void cut(std::size_t n) {
@@ -183,14 +283,20 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     void select_local(const Params<D>& params, Real dt, const State<D>& state, bool everyone) {
         const std::size_t n = state.size();
         const std::size_t begin = first_[std::size_t(rank_)], end = first_[std::size_t(rank_) + 1];
-        // How far a step can move a particle (Verlet: half-kick, then drift)
-        // widens every link of the chain, at both ends.
-        Real v2_max = 0, a2_max = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            v2_max = std::max(v2_max, squared_length<D>(state.velocity[i]));
-            a2_max = std::max(a2_max, squared_length<D>(state.acceleration[i]));
+        // How far a Verlet step moves a particle before its forces (half-kick,
+        // then drift) widens every link of the chain, at both ends. The other
+        // steps (symplectic Euler; dfsph, whose redone halves are steps of
+        // their own) find every neighbour where the particles are at their
+        // start and move them only at their end: no allowance.
+        Real move = 0;
+        if (params.integrator == Integrator::verlet) {
+            Real v2_max = 0, a2_max = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+                v2_max = std::max(v2_max, squared_length<D>(state.velocity[i]));
+                a2_max = std::max(a2_max, squared_length<D>(state.acceleration[i]));
+            }
+            move = dt * std::sqrt(v2_max) + dt * dt * std::sqrt(a2_max);
         }
-        const Real move = dt * std::sqrt(v2_max) + dt * dt * std::sqrt(a2_max);
         // The float passes (solver.precision single) sum over every particle
         // of the 3^D cells around a particle's cell, a lane per candidate:
         // the same bits need the same candidates, every particle of the
@@ -309,6 +415,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         const auto p = std::size_t(ranks_);
         const std::size_t begin = first_[std::size_t(rank_)];
         owned_in_local_ = 0;
+        owned_offset_ = 0;
         std::fill(need_.begin(), need_.end(), 0);
         std::size_t owner = 0;
         for (std::size_t k = 0; k < local_index_.size(); ++k) {
@@ -368,11 +475,19 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         }
     }
 
-    // The owned particles' new state from every rank, into `state`.
-    void share_results(State<D>& state, double seconds) {
+    // The owned particles' new state, and the solver's kept arrays, from
+    // every rank, into `state` and kept_whole_.
+    void share_results(State<D>& state, double seconds, std::span<std::vector<Real>* const> kept) {
         const std::size_t n = state.size();
         const std::size_t begin = first_[std::size_t(rank_)], end = first_[std::size_t(rank_) + 1];
         const std::size_t owned = end - begin;
+        stride_ = state_stride + kept.size();
+        const std::size_t stride = stride_;
+        // The kept arrays the step filled (sized to what it held).
+        std::uint32_t filled = 0;
+        for (std::size_t a = 0; a < kept.size(); ++a)
+            if (kept[a]->size() == local_.size())
+                filled |= std::uint32_t(1) << a;
         if ((n * stride + std::size_t(ranks_) * trailer) >
             std::size_t(std::numeric_limits<int>::max()))
             throw std::length_error("MPI ranks: more particles than one gather can count");
@@ -392,10 +507,13 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             }
             out[3 * D] = local_.density[j];
             out[3 * D + 1] = local_.pressure[j];
+            for (std::size_t a = 0; a < kept.size(); ++a)
+                out[state_stride + a] = filled >> a & 1 ? (*kept[a])[j] : 0;
         }
         send_[owned * stride] = double(local_.size());
         send_[owned * stride + 1] = seconds;
         send_[owned * stride + 2] = step_halo_bytes_;
+        send_[owned * stride + 3] = double(filled);
         for (int r = 0; r < ranks_; ++r) {
             const std::size_t count =
                 (first_[std::size_t(r) + 1] - first_[std::size_t(r)]) * stride + trailer;
@@ -409,6 +527,19 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
                         counts_.data(), displacements_.data(), MPI_DOUBLE, MPI_COMM_WORLD,
                         &request);
         MPI_Wait(&request, MPI_STATUS_IGNORE);
+        // A kept array is whole when every rank filled it.
+        std::uint32_t whole = ~std::uint32_t(0);
+        for (int r = 0; r < ranks_; ++r) {
+            const std::size_t count = first_[std::size_t(r) + 1] - first_[std::size_t(r)];
+            whole &= std::uint32_t(
+                receive_[std::size_t(displacements_[std::size_t(r)]) + count * stride + 3]);
+        }
+        for (std::size_t a = 0; a < kept.size(); ++a) {
+            if (whole >> a & 1)
+                kept_whole_[a].resize(n);
+            else
+                kept_whole_[a].clear();
+        }
         for (int r = 0; r < ranks_; ++r) {
             const std::size_t from = first_[std::size_t(r)], to = first_[std::size_t(r) + 1];
             const Real* block = receive_.data() + displacements_[std::size_t(r)];
@@ -422,6 +553,9 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
                 }
                 state.density[i] = in[3 * D];
                 state.pressure[i] = in[3 * D + 1];
+                for (std::size_t a = 0; a < kept.size(); ++a)
+                    if (whole >> a & 1)
+                        kept_whole_[a][i] = in[state_stride + a];
             }
             const Real* tail = block + (to - from) * stride;
             last_owned_[std::size_t(r)] = to - from;
@@ -476,13 +610,14 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         time_imbalance_sum_ += time;
         time_imbalance_max_ = std::max(time_imbalance_max_, time);
         halo_sum_ += local_.size() - owned;
-        received_bytes_ += (n - owned) * stride * sizeof(Real);
+        received_bytes_ += (n - owned) * stride_ * sizeof(Real);
     }
 
     const int hops_;
     const bool whole_cells_;
     const int rank_, ranks_;
     std::vector<std::size_t> first_;
+    std::size_t stride_ = state_stride; // values a particle in the gather
     std::vector<std::uint32_t> local_index_;
     std::vector<std::uint8_t> near_, grown_;
     std::vector<std::ptrdiff_t> last_marked_; // grow_cells: per line across a slab
@@ -497,6 +632,13 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     std::vector<MPI_Request> requests_;
     std::size_t owned_offset_ = 0, owned_in_local_ = 0;
     double step_halo_bytes_ = 0, halo_bytes_ = 0;
+    // The solver's kept arrays for the whole state (Solver::kept_arrays).
+    std::vector<std::vector<Real>> kept_whole_;
+    std::vector<Real> permute_scratch_;
+    // dfsph's exchanges and sums in each iteration.
+    std::chrono::steady_clock::time_point sum_start_;
+    double solve_exchange_seconds_ = 0;
+    std::uint64_t sums_ = 0;
     bool stepped_ = false;
     std::size_t stepped_size_ = 0;
     // Balance and traffic, for run.json.
@@ -514,17 +656,11 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
 } // namespace
 
 template <int D>
-std::unique_ptr<Partition<D>>
-make_rank_partition(const Params<D>& params, std::string_view solver_name,
-                    const EffectList<D>& effects, const std::string& scene_file) {
+std::unique_ptr<Partition<D>> make_rank_partition(const Params<D>& params,
+                                                  const EffectList<D>& effects,
+                                                  const std::string& scene_file) {
     if (size() <= 1)
         return nullptr;
-    // DFSPH's solves iterate neighbour sums to a tolerance on the mean
-    // density error: a halo exchange per iteration, not per step.
-    if (solver_name == "dfsph")
-        throw InputError(scene_file, "solver.name",
-                         "dfsph does not run over MPI ranks yet (its pressure solves need a halo "
-                         "exchange per iteration); use wcsph or seed, or run on one rank");
     // The float passes gather a cell's neighbourhood in the order of the
     // grid over the fluid and wall particles: the same grid on every rank
     // only when the domain's wall particles bound it, as they bound the
@@ -541,14 +677,23 @@ make_rank_partition(const Params<D>& params, std::string_view solver_name,
     for (const auto& effect : effects)
         if (dynamic_cast<const SurfaceTension<D>*>(effect.get()))
             hops = 2; // ... or normals from densities, then forces from normals
+    // ... then, with wcsph's carried density (solver.density_diffusion), its
+    // rate, which reads the neighbours' velocities after the kick (from
+    // their forces) and their renormalised density gradients (from their
+    // own neighbours). dfsph's sums exchange what they read instead.
+    if (params.density_diffusion > 0)
+        ++hops;
+    // The walls' extrapolated pressure (wcsph's solver.wall_pressure
+    // extrapolated) is a sum over the fluid around each wall particle, which
+    // a wall particle beside an owned one has up to a support radius further.
+    if (params.wall_pressure == WallPressure::extrapolated)
+        ++hops;
     return std::make_unique<RankPartition<D>>(hops, single);
 }
 
-template std::unique_ptr<Partition<2>> make_rank_partition<2>(const Params<2>&, std::string_view,
-                                                              const EffectList<2>&,
-                                                              const std::string&);
-template std::unique_ptr<Partition<3>> make_rank_partition<3>(const Params<3>&, std::string_view,
-                                                              const EffectList<3>&,
-                                                              const std::string&);
+template std::unique_ptr<Partition<2>>
+make_rank_partition<2>(const Params<2>&, const EffectList<2>&, const std::string&);
+template std::unique_ptr<Partition<3>>
+make_rank_partition<3>(const Params<3>&, const EffectList<3>&, const std::string&);
 
 } // namespace sph::parallel

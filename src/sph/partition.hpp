@@ -19,6 +19,9 @@ class Partition {
     // `state` as that call would give.
     virtual StepReport step(Solver<D>& solver, const Params<D>& params, Real dt, State<D>& state,
                             StepContext<D>& context) = 0;
+    // The particle arrays were reordered between steps (State::permute
+    // with `order`): what the partition keeps per particle follows.
+    virtual void permute(std::span<const std::uint32_t> /*order*/) {}
     // What run.json records: ranks, decomposition, balance, bytes moved.
     virtual nlohmann::json report() const = 0;
 };

@@ -87,8 +87,7 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
         ctx.start_time = time_ + Real(k) * dt;
         // The paddles where they are when the step starts.
         ctx.place_boundaries(ctx.start_time);
-        const StepReport report = partition_ ? partition_->step(*solver_, params_, dt, state_, ctx)
-                                             : solver_->step(params_, dt, state_, ctx);
+        const StepReport report = take_step(dt, ctx);
         ++steps_;
         ++counters_.steps;
         counters_.dt_min = std::min(counters_.dt_min, dt);
@@ -102,6 +101,33 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
             return problem;
     }
     return std::nullopt;
+}
+
+// The solver's step, or the partition's share of it. A step the solver
+// asks to redo (dfsph's density solve ended above its tolerance) is taken
+// again from its start as two halves, each of which may ask the same; the
+// halves count as one step, with every attempt's iterations. Here rather
+// than in the solver: over ranks each half starts from the gathered state,
+// with a halo chosen where the first half left the particles.
+template <int D>
+StepReport Simulation<D>::take_step(Real dt, StepContext<D>& ctx) {
+    StepReport report = partition_ ? partition_->step(*solver_, params_, dt, state_, ctx)
+                                   : solver_->step(params_, dt, state_, ctx);
+    if (!report.redo_in_halves)
+        return report;
+    const Real start = ctx.start_time;
+    ++ctx.halvings;
+    const StepReport first = take_step(dt / 2, ctx);
+    ctx.start_time = start + dt / 2;
+    ctx.place_boundaries(ctx.start_time);
+    const StepReport second = take_step(dt / 2, ctx);
+    --ctx.halvings;
+    ctx.start_time = start;
+    report.redo_in_halves = false;
+    report.pressure_iterations += first.pressure_iterations + second.pressure_iterations;
+    report.divergence_iterations += first.divergence_iterations + second.divergence_iterations;
+    report.obstacle_pushes += first.obstacle_pushes + second.obstacle_pushes;
+    return report;
 }
 
 template <int D>
@@ -124,6 +150,8 @@ void Simulation<D>::reorder_particles() {
     }
     state_.permute(order, permute_scratch_);
     solver_->permute(order);
+    if (partition_)
+        partition_->permute(order);
     for (const auto& effect : effects_)
         effect->permute(order);
 }

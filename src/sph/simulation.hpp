@@ -111,6 +111,8 @@ class Simulation {
     // Every params.reorder_every steps: the particle arrays (the state's, the
     // solver's, the effects') sorted by cell, at the current positions.
     void reorder_particles();
+    // One step of dt, in halves where the solver asks (see simulation.cpp).
+    StepReport take_step(Real dt, StepContext<D>& ctx);
     // Plain steps, checked after each; the first problem found, if any.
     std::optional<StepProblem> try_steps(Real dt, int count);
 

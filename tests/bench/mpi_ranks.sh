@@ -5,7 +5,8 @@
 # the run and the simulation's particle-steps per second, and for the ranks
 # the halo (particles each rank steps besides its own), the bytes each rank
 # receives per step (halo exchange, gather) and the measured imbalance, from
-# run.json, and rank 0's stage table (where a rank's time goes). Also checks
+# run.json, and rank 0's stage table (where a rank's time goes; for dfsph
+# also the time its solves spent in their per-iteration exchanges and sums). Also checks
 # that the two layouts' state hashes agree. No figure is asserted.
 #
 #   tests/bench/mpi_ranks.sh build/sphclip [SCENE] [DURATION] [REPEAT]
@@ -66,6 +67,11 @@ print(f"ranks: owned {m['owned_per_rank']}, owned + halo {m['owned_and_halo_per_
 print(f"imbalance (max / mean): particles {m['imbalance']['particles_mean']:.3f} "
       f"(worst {m['imbalance']['particles_max']:.3f}), solver seconds "
       f"{m['imbalance']['seconds_mean']:.3f} (worst {m['imbalance']['seconds_max']:.3f})")
+if m.get("sums_in_particle_order", 0) > 0:
+    # dfsph: its iterations' halo exchanges and sums across the ranks, inside its solve stages.
+    print(f"solve exchanges and sums in particle order (within the solve stages, rank 0): "
+          f"{m['solve_exchange_seconds']:.2f} s, {m['sums_in_particle_order'] / m['steps']:.1f} "
+          f"sums per rank-step")
 for name, r in (("1 rank x 2 threads", plain[0]), ("2 ranks x 1 thread, rank 0", ranks[0])):
     print(f"{name}: " + ", ".join(f"{st['name']} {st['seconds']:.2f} s"
                                   for st in r["stages"] if st.get("seconds", 0) > 0.005))

@@ -6,8 +6,8 @@
 # particles), the same particle exports byte for byte, and a run.json that
 # records the ranks. Then: an MP4 from 2 ranks equal to the plain one (when
 # OpenGL works), SIGINT to mpirun finalising the MP4 (run.json
-# "interrupted"; mpirun itself exits 1), and dfsph refused on 2 ranks with
-# exit 2, naming the key.
+# "interrupted"; mpirun itself exits 1), and single precision with
+# reflecting walls refused on 2 ranks with exit 2, naming the key.
 #
 #   tests/mpi/check_mpi.sh build/sphclip MPIRUN [CASE]
 #
@@ -106,6 +106,17 @@ if name == "jet_3d":
     assert mpi["steps_with_an_empty_rank"] > 0, mpi
 if name == "paddle_obstacle_2d":
     assert mpi["migrations"] > 0, mpi
+if name.startswith("dfsph"):
+    # Every iteration exchanged the halo's values and summed in particle order.
+    assert mpi["sums_in_particle_order"] > 0, mpi
+if name == "dfsph_2d":
+    # Steps redone in halves: more steps over ranks than the run took.
+    run = json.load(open(f"{w}/{name}-np3/run.json"))
+    assert mpi["steps"] > run["steps"], (mpi["steps"], run["steps"])
+    assert mpi["migrations"] > 0, mpi
+if name == "dfsph_3d":
+    assert mpi["migrations"] > 0, mpi
+    assert mpi["steps_with_an_empty_rank"] > 0, mpi
 PY
 }
 
@@ -165,16 +176,18 @@ check_interrupt() {
 
 check_refused() {
     code=0
-    mpi 2 run "$here/scenes/tension_2d.json" --out "$work/refused" --no-png --no-mp4 \
-        --set solver.name=dfsph --quiet > "$work/refused.log" 2>&1 || code=$?
+    mpi 2 run "$here/scenes/jet_3d.json" --out "$work/refused" --no-png --no-mp4 \
+        --set solver.precision=single --set solver.walls=reflect --quiet \
+        > "$work/refused.log" 2>&1 || code=$?
     [ "$code" -eq 2 ] || {
         cat "$work/refused.log"
-        fail "refused: dfsph on 2 ranks exited $code, not 2"
+        fail "refused: single precision with reflecting walls on 2 ranks exited $code, not 2"
     }
-    grep -q "solver.name: dfsph does not run over MPI ranks" "$work/refused.log" ||
-        fail "refused: the message does not name solver.name"
+    grep -q "solver.walls: single precision over MPI ranks needs wall particles" \
+        "$work/refused.log" || fail "refused: the message does not name solver.walls"
     [ ! -e "$work/refused/stats.csv" ] || fail "refused: wrote stats.csv"
-    echo "mpi: refused: dfsph on 2 ranks exits 2 naming solver.name, writing nothing"
+    echo "mpi: refused: single precision with reflecting walls on 2 ranks exits 2 naming" \
+        "solver.walls, writing nothing"
 }
 
 case "$case_name" in

@@ -40,6 +40,8 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
         find_neighbours_and_carried_density(params, kernel, context, state);
     else
         find_neighbours_and_density(params, kernel, context, state);
+    // Over ranks: the halo's densities from their owners (the viscosities read them).
+    context.share_halo_densities(state);
 
     auto timed = context.time(Stage::pressure_solve);
     factor_.resize(n);
@@ -105,8 +107,8 @@ void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, Step
 }
 
 template <int D>
-int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
-                          const StepContext<D>& context, State<D>& state) {
+int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepContext<D>& context,
+                          State<D>& state) {
     const std::size_t n = state.size();
     const NeighbourList& pairs = context.neighbours;
     const NeighbourList* walls = context.boundary ? &context.boundary_neighbours : nullptr;
@@ -128,16 +130,21 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
     const Real scale = target == Target::divergence ? Real(0.5)
                        : previous_dt_ > 0           ? dt / previous_dt_
                                                     : 0;
+    // Over ranks: the halo's velocities from their owners (the kick gave
+    // the halo accelerations from incomplete neighbourhoods).
+    context.share_halo(state.velocity);
     velocity_at_start_ = state.velocity; // for a restart (below)
     if (settings.warm_start && previous.size() == n && scale > 0) {
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i)
             stiffness_[i] = scale * previous[i];
         correct_velocities(context, state);
+        context.share_halo(state.velocity);
         sum = stiffness_;
     } else {
         sum.assign(n, 0);
     }
+    const Real particles = Real(context.total_particles(n));
     // A diverging iteration (the error grows instead of shrinking: particles
     // stacked on each other make the system far from diagonally dominant) is
     // restarted from the solve's start with half the relaxation, a few times;
@@ -171,13 +178,14 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
         // The residual of a pressure that must stay >= 0: compression
         // anywhere, and expansion where there is pressure to give back.
         // Summed in particle order, not by an OpenMP reduction, so that the
-        // iteration count, and so every bit, is the same for any thread count.
-        Real error_sum = 0;
-        for (std::size_t i = 0; i < n; ++i)
-            error_sum += sum[i] > 0 ? std::abs(source_[i]) : std::max(source_[i], Real(0));
+        // iteration count, and so every bit, is the same for any thread
+        // count, and over ranks for any rank count.
+        const Real error_sum = context.sum_in_particle_order(n, [&](std::size_t i) {
+            return sum[i] > 0 ? std::abs(source_[i]) : std::max(source_[i], Real(0));
+        });
         // Mean relative density error (density) or density change within one
         // step (divergence): dt * mean(residual) / rho0 in both cases.
-        const Real error = n ? dt * error_sum / (Real(n) * rho0) : 0;
+        const Real error = particles > 0 ? dt * error_sum / (particles * rho0) : 0;
         if (target == Target::density)
             last_density_error_pct_ = 100 * error;
         if (first_error < 0) {
@@ -208,7 +216,11 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
             stiffness_[i] = updated - sum[i];
             sum[i] = updated;
         }
+        // Over ranks the halo's stiffnesses, then its corrected velocities,
+        // are their owners' (a halo particle's own source is incomplete).
+        context.share_halo(stiffness_);
         correct_velocities(context, state);
+        context.share_halo(state.velocity);
         ++iterations;
     }
     previous = sum;
@@ -281,27 +293,21 @@ void DfsphSolver<D>::add_wall_weight(const Params<D>& params, const StepContext<
     }
 }
 
-template <int D>
-StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& state,
-                                StepContext<D>& context) {
-    return step_in_pieces(params, dt, 0, state, context);
-}
-
 // A step whose density solve ends at solver.max_iterations above its
 // tolerance is not incompressible: the compression it leaves springs back
 // later (measured: a column at rest, whose first step takes dt_max and must
 // build the whole hydrostatic pressure from zero, left 21% at its base at
 // a / 80 and shot its bottom rows along the floor at 3.5 m/s). The
 // compression a step adds grows as dt^2 (g dt^2 at rest), so such a step,
-// when it started within the tolerance, is redone as two halves, up to
-// max_splits times. The halves are one
+// when it started within the tolerance, asks to be redone as two halves
+// (Simulation::take_step), up to max_splits times. The halves are one
 // step in stats.csv's `steps`; their iterations, the failed attempt's
 // included, are in its pressure and divergence iterations.
 template <int D>
-StepReport DfsphSolver<D>::step_in_pieces(const Params<D>& params, Real dt, int splits,
-                                          State<D>& state, StepContext<D>& context) {
+StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& state,
+                                StepContext<D>& context) {
     StepReport report;
-    const bool may_split = splits < max_splits;
+    const bool may_split = context.halvings < max_splits;
     if (may_split)
         velocity_at_step_start_ = state.velocity; // reused memory once sizes settle
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
@@ -318,14 +324,16 @@ StepReport DfsphSolver<D>::step_in_pieces(const Params<D>& params, Real dt, int 
     // and removing it in a shorter step takes faster corrections (measured:
     // a paddle's channel blew up). So a step is split only when it starts
     // within the tolerance. Summed in particle order: the same bits for any
-    // thread count.
+    // thread or rank count.
     Real compression_at_start_pct = 0;
     if (may_split) {
-        Real sum = 0;
-        for (std::size_t i = 0; i < state.size(); ++i)
-            sum += std::max(state.density[i] - params.rest_density, Real(0));
+        const std::size_t n = state.size();
+        const Real sum = context.sum_in_particle_order(n, [&](std::size_t i) {
+            return std::max(state.density[i] - params.rest_density, Real(0));
+        });
+        const Real particles = Real(context.total_particles(n));
         compression_at_start_pct =
-            state.size() ? 100 * sum / (Real(state.size()) * params.rest_density) : 0;
+            particles > 0 ? 100 * sum / (particles * params.rest_density) : 0;
     }
     // 3. Non-pressure forces, the scene's effects (viscosity, gravity, ...); v* = v + dt a.
     std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
@@ -345,17 +353,9 @@ StepReport DfsphSolver<D>::step_in_pieces(const Params<D>& params, Real dt, int 
     if (may_split && report.pressure_iterations >= params.pressure_solve.max_iterations &&
         last_density_error_pct_ > params.pressure_solve.tolerance &&
         compression_at_start_pct <= params.pressure_solve.tolerance) {
-        // Not converged: the same step in two halves, from its start.
+        // Not converged: back to the step's start, to be taken in two halves.
         state.velocity = velocity_at_step_start_;
-        const Real start = context.start_time;
-        const StepReport first = step_in_pieces(params, dt / 2, splits + 1, state, context);
-        context.start_time = start + dt / 2;
-        context.place_boundaries(context.start_time);
-        const StepReport second = step_in_pieces(params, dt / 2, splits + 1, state, context);
-        context.start_time = start;
-        report.pressure_iterations += first.pressure_iterations + second.pressure_iterations;
-        report.divergence_iterations += first.divergence_iterations + second.divergence_iterations;
-        report.obstacle_pushes = first.obstacle_pushes + second.obstacle_pushes;
+        report.redo_in_halves = true;
         return report;
     }
     // The pressure itself moves nothing (the solves work with stiffnesses):

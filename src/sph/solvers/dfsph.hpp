@@ -18,6 +18,7 @@
 
 #include "sph/solvers/solver.hpp"
 
+#include <array>
 #include <vector>
 
 namespace sph {
@@ -38,6 +39,9 @@ template <int D>
 class DfsphSolver final : public Solver<D> {
   public:
     explicit DfsphSolver(KernelKind kernel) : kernel_(kernel) {}
+    // kept_ points into this object.
+    DfsphSolver(const DfsphSolver&) = delete;
+    DfsphSolver& operator=(const DfsphSolver&) = delete;
     std::string_view name() const override { return "dfsph"; }
     TimeStepModel time_step_model() const override { return {.carries_sound = false}; }
     StepReport step(const Params<D>& params, Real dt, State<D>& state,
@@ -46,10 +50,11 @@ class DfsphSolver final : public Solver<D> {
     // The warm start's stiffnesses follow their particles; the other arrays
     // are recomputed every step.
     void permute(std::span<const std::uint32_t> order) override {
-        for (std::vector<Real>* kept : {&previous_stiffness_, &previous_divergence_})
+        for (std::vector<Real>* kept : kept_)
             if (kept->size() == order.size())
                 sph::permute(*kept, order, permute_scratch_);
     }
+    std::span<std::vector<Real>* const> kept_arrays() override { return kept_; }
 
     // Mean compression, in percent, the last density solve ended with.
     Real last_density_error_pct() const { return last_density_error_pct_; }
@@ -59,15 +64,12 @@ class DfsphSolver final : public Solver<D> {
     template <class Kernel>
     void prepare(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
                  State<D>& state);
-    int solve(const Params<D>& params, Real dt, Target target, const StepContext<D>& context,
+    int solve(const Params<D>& params, Real dt, Target target, StepContext<D>& context,
               State<D>& state);
     void correct_velocities(const StepContext<D>& context, State<D>& state) const;
     // state.acceleration += the walls' hydrostatic pressure (solver.wall_pressure).
     void add_wall_weight(const Params<D>& params, const StepContext<D>& context,
                          State<D>& state) const;
-    // One step of dt, split into halves while its density solve does not converge.
-    StepReport step_in_pieces(const Params<D>& params, Real dt, int splits, State<D>& state,
-                              StepContext<D>& context);
     // Halvings of a step at most: dt / 16.
     static constexpr int max_splits = 4;
 
@@ -81,6 +83,7 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Real> stiffness_sum_;  // s_i summed over the density solve
     std::vector<Real> divergence_sum_; // s_i summed over the divergence solve
     std::vector<Real> previous_stiffness_, previous_divergence_; // last step's sums
+    const std::array<std::vector<Real>*, 2> kept_{&previous_stiffness_, &previous_divergence_};
     Real previous_dt_ = 0;
     std::vector<Real> permute_scratch_;
     std::vector<Real> source_;                   // the compression rate to remove

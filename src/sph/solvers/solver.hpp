@@ -20,15 +20,31 @@
 namespace sph {
 
 // Over MPI ranks (src/parallel/, docs/mpi.md) a step holds its rank's own
-// particles and a halo around them. After the density stage the halo's
-// densities and pressures are replaced by those their owners computed, from
-// complete neighbourhoods: the sums that follow then need a halo one support
-// radius wide, not one per neighbour sum of the step.
+// particles, a run of its local state in the global memory order, and a halo
+// around them. After the density stage the halo's densities and pressures
+// are replaced by those their owners computed, from complete
+// neighbourhoods: the sums that follow then need a halo one support radius
+// wide, not one per neighbour sum of the step. An iterative solve (dfsph)
+// does the same with the values each iteration's sums read, and continues
+// its sums over all particles from rank to rank.
 template <int D>
 class HaloExchange {
   public:
     virtual ~HaloExchange() = default;
     virtual void share_densities(State<D>& state) = 0;
+    // The halo's entries of a per-particle array from their owners.
+    virtual void share(std::span<Real> values) = 0;
+    virtual void share(std::span<Vec<D>> values) = 0;
+    // The owned particles: [begin, end) of the local state.
+    virtual std::size_t owned_begin() const = 0;
+    virtual std::size_t owned_end() const = 0;
+    // Particles over all ranks.
+    virtual std::size_t total_particles() const = 0;
+    // A sum in particle order over all ranks: what the ranks before this
+    // one summed (0 on the first), then, given this rank's continuation of
+    // it, the whole sum, on every rank.
+    virtual Real sum_before() = 0;
+    virtual Real finish_sum(Real sum) = 0;
 };
 
 // What a step needs besides parameters and state: the neighbour search and the
@@ -52,6 +68,10 @@ struct StepContext {
     // The ranks' halo exchange; null in one process.
     HaloExchange<D>* halo = nullptr;
 
+    // How many times this step has been halved: a step the solver asks to
+    // redo (StepReport::redo_in_halves) is taken again as two halves.
+    int halvings = 0;
+
     // The halo particles' densities and pressures from the ranks that own
     // them (HaloExchange); nothing in one process. After the density stage.
     void share_halo_densities(State<D>& state) {
@@ -59,6 +79,34 @@ struct StepContext {
             return;
         auto timed = time(Stage::halo_exchange);
         halo->share_densities(state);
+    }
+    // The halo's entries of `values` from their owners; nothing in one
+    // process. Untimed: an iterative solve calls it inside its own stage.
+    template <class T>
+    void share_halo(std::vector<T>& values) {
+        if (halo)
+            halo->share(std::span<T>(values));
+    }
+    // Particles in the whole simulation: n, the state's, in one process.
+    std::size_t total_particles(std::size_t n) const { return halo ? halo->total_particles() : n; }
+    // sum_i term(i) over the whole simulation's particles, added one by one
+    // in particle (memory) order, as one process adds them: over ranks each
+    // rank adds its owned run to what the ranks before it summed, so the
+    // bits, and every decision taken on the sum, are the same on any number
+    // of ranks (an MPI_Allreduce would add the ranks' partial sums, whose
+    // bits depend on where the ranges are cut). n: the state's particles.
+    template <class Term>
+    Real sum_in_particle_order(std::size_t n, Term term) {
+        if (!halo) {
+            Real sum = 0;
+            for (std::size_t i = 0; i < n; ++i)
+                sum += term(i);
+            return sum;
+        }
+        Real sum = halo->sum_before();
+        for (std::size_t i = halo->owned_begin(); i < halo->owned_end(); ++i)
+            sum += term(i);
+        return halo->finish_sum(sum);
     }
 
     // Moves the boundary particles that move (the paddles') to where their
@@ -118,6 +166,10 @@ struct StepReport {
     int pressure_iterations = 0;       // dfsph: density solve
     int divergence_iterations = 0;     // dfsph: divergence solve
     std::uint64_t obstacle_pushes = 0; // particles put back out of an obstacle (obstacles.hpp)
+    // The step did not hold (dfsph: its density solve ended above its
+    // tolerance): the state is as it started but for fields the step
+    // recomputes, and the caller takes it again as two halves.
+    bool redo_in_halves = false;
 };
 
 template <int D>
@@ -141,6 +193,11 @@ class Solver {
     // `order`): per-particle arrays kept from one step to the next must
     // follow. Nothing to do for a solver that keeps none.
     virtual void permute(std::span<const std::uint32_t> /*order*/) {}
+    // Those per-particle arrays, each empty or sized to the state the last
+    // step was given. Over MPI ranks the partition keeps them for the whole
+    // state: before a step it gives the solver the entries of the particles
+    // the step holds, after it gathers the owned ones (docs/mpi.md).
+    virtual std::span<std::vector<Real>* const> kept_arrays() { return {}; }
 };
 
 // What a solver can do and what it chooses when the scene says "auto",

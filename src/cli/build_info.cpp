@@ -1,6 +1,7 @@
 #include "cli/build_info.hpp"
 
 #include "sph/single_precision/single_passes.hpp"
+#include "sph/vector_clones.hpp"
 #include "sphclip_build_info.hpp"
 
 #include <ctime>
@@ -105,7 +106,9 @@ nlohmann::json machine_json() {
     }
     return {{"cpu_model", cpu_model(text.str())},
             {"logical_cpus", std::thread::hardware_concurrency()},
-            {"simd_variant", variant}};
+            {"simd_variant", variant},
+            // The double-precision passes' (sph/vector_clones.hpp).
+            {"double_variant", vector_clone_variant()}};
 }
 
 std::string utc_iso8601(std::chrono::system_clock::time_point time) {

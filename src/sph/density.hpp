@@ -7,6 +7,7 @@
 #include "sph/neighbours/neighbour_sum.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"
+#include "sph/vector_clones.hpp"
 
 #include <cmath>
 
@@ -22,8 +23,8 @@ Real kernel_value_squared(const Kernel& kernel, Real r2) {
 }
 
 template <int D, class Kernel>
-void compute_density(const Params<D>& params, const Kernel& kernel, const NeighbourList& neighbours,
-                     State<D>& state) {
+SPHCLIP_CLONED void compute_density(const Params<D>& params, const Kernel& kernel,
+                                    const NeighbourList& neighbours, State<D>& state) {
     const std::size_t n = state.size();
     const Real self = kernel_value_squared(kernel, Real(0));
 #pragma omp parallel for schedule(static)
@@ -39,9 +40,10 @@ void compute_density(const Params<D>& params, const Kernel& kernel, const Neighb
 // The walls' share of the density: rho_i += sum_b rho0 V_b W_ib
 // (Akinci et al. 2012, eq. 6).
 template <int D, class Kernel>
-void add_boundary_density(const Params<D>& params, const Kernel& kernel,
-                          const BoundaryParticles<D>& boundary,
-                          const NeighbourList& boundary_neighbours, State<D>& state) {
+SPHCLIP_CLONED void add_boundary_density(const Params<D>& params, const Kernel& kernel,
+                                         const BoundaryParticles<D>& boundary,
+                                         const NeighbourList& boundary_neighbours,
+                                         State<D>& state) {
     const std::size_t n = state.size();
     const auto xb = boundary.positions();
     const auto volume = boundary.volumes();

@@ -28,6 +28,7 @@
 #include "sph/pair_direction.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"
+#include "sph/vector_clones.hpp"
 
 #include <cmath>
 #include <vector>
@@ -60,10 +61,11 @@ struct ContinuityScratch {
 // rate[i] = D rho_i / Dt at the current positions, velocities and carried
 // densities; `delta` 0 leaves the diffusive term (and its gradient pass) out.
 template <int D, class Kernel>
-void compute_density_rate(const Params<D>& params, const Kernel& kernel,
-                          const NeighbourList& neighbours, const BoundaryParticles<D>* boundary,
-                          const NeighbourList& boundary_neighbours, const State<D>& state,
-                          ContinuityScratch<D>& scratch, std::vector<Real>& rate) {
+SPHCLIP_CLONED void
+compute_density_rate(const Params<D>& params, const Kernel& kernel, const NeighbourList& neighbours,
+                     const BoundaryParticles<D>* boundary, const NeighbourList& boundary_neighbours,
+                     const State<D>& state, ContinuityScratch<D>& scratch,
+                     std::vector<Real>& rate) {
     const std::size_t n = state.size();
     resize_with_headroom(rate, n);
     const Real delta = params.density_diffusion;

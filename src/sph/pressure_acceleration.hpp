@@ -33,6 +33,7 @@
 #include "sph/neighbours/neighbour_sum.hpp"
 #include "sph/pair_direction.hpp"
 #include "sph/params.hpp"
+#include "sph/vector_clones.hpp"
 
 #include <type_traits>
 #include <vector>
@@ -61,6 +62,76 @@ struct PairViscosities {
     }
 };
 
+namespace detail {
+
+// The pass over the pairs, compiled for each set of viscosities and wall
+// pressure: a test in the wall loop keeps it from vectorising, which also
+// changes its sum's order (and so every bit of a 3D run). A function of its
+// own, not a lambda, so that its OpenMP region is cloned with it
+// (sph/vector_clones.hpp).
+template <bool artificial, bool laminar, bool hydrostatic, bool extrapolated, int D, class Kernel>
+SPHCLIP_CLONED void
+accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourList& neighbours,
+                 const BoundaryParticles<D>* boundary, const NeighbourList& boundary_neighbours,
+                 const PairViscosities& viscosities, const std::vector<Real>& pressure_term,
+                 State<D>& state, const Real* wall_pressure_term) {
+    const std::size_t n = state.size();
+    const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
+    const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+        const Real pi_over_rho2 = pressure_term[i];
+        const Real viscous_scale = laminar ? morris.two_mu / state.density[i] : 0;
+        Vec<D> a = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
+            const Vec<D> x_ij = state.position[i] - state.position[j];
+            const Real r2 = squared_length<D>(x_ij);
+            const Real r = std::sqrt(r2);
+            const Vec<D> v_ij = state.velocity[i] - state.velocity[j];
+            Real factor = pi_over_rho2 + pressure_term[j];
+            if constexpr (artificial)
+                factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
+            Vec<D> term = -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
+            if constexpr (laminar)
+                term +=
+                    (viscous_scale * morris.fluid(kernel, params.mass, state.density[j], r, r2)) *
+                    v_ij;
+            return term;
+        });
+        if (boundary) {
+            const auto xb = boundary->positions();
+            const auto volume = boundary->volumes();
+            // A local span, not boundary->velocity(b): the loop then vectorises.
+            const auto wall_velocity = boundary->velocities();
+            a += sum_over_neighbours(boundary_neighbours, i, [&](std::uint32_t b) {
+                const Vec<D> x_ib = state.position[i] - xb[b];
+                const Real r2 = squared_length<D>(x_ib);
+                const Real r = std::sqrt(r2);
+                const Vec<D> v_ib = state.velocity[i] - wall_velocity[b];
+                Real factor = 2 * pi_over_rho2;
+                if constexpr (extrapolated)
+                    factor = pi_over_rho2 + wall_pressure_term[b];
+                // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise,
+                // p_b = max(p_i + rho_i g . (x_b - x_i), 0).
+                else if constexpr (hydrostatic)
+                    factor =
+                        pi_over_rho2 + std::max(pi_over_rho2 - glm::dot(params.wall_gravity, x_ib) /
+                                                                   state.density[i],
+                                                Real(0));
+                if constexpr (artificial)
+                    factor += Pi(glm::dot(v_ib, x_ib), 2 * state.density[i], r2);
+                Vec<D> term = -(params.rest_density * volume[b] * factor) *
+                              boundary_gradient(kernel, x_ib, r);
+                if constexpr (laminar)
+                    term += (viscous_scale * morris.wall(kernel, volume[b], r, r2)) * v_ib;
+                return term;
+            });
+        }
+        state.acceleration[i] = a;
+    }
+}
+
+} // namespace detail
+
 template <int D, class Kernel>
 void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel,
                                    const NeighbourList& neighbours,
@@ -78,70 +149,12 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
     // solver.wall_pressure extrapolated: p_b / rho_b^2 per wall particle
     // (sph/wall_pressure.hpp), which replaces the mirrored p_i / rho_i^2.
     const bool extrapolated_walls = wall_pressure_term != nullptr;
-    // Compiled for each set of viscosities (PairViscosities::dispatch) and
-    // wall pressure: a test in the wall loop keeps it from vectorising, which
-    // also changes its sum's order (and so every bit of a 3D run).
-    // params and kernel by init-capture: clang 14 rejects the inner lambdas'
-    // uses of the function's own parameters inside the OpenMP loop.
-    const auto accelerate = [&, &params = params,
-                             &kernel = kernel](auto artificial_flag, auto laminar_flag,
-                                               auto hydrostatic_flag, auto extrapolated_flag) {
-        constexpr bool artificial = decltype(artificial_flag)::value;
-        constexpr bool laminar = decltype(laminar_flag)::value;
-        constexpr bool hydrostatic = decltype(hydrostatic_flag)::value;
-        constexpr bool extrapolated = decltype(extrapolated_flag)::value;
-        const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
-        const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
-#pragma omp parallel for schedule(dynamic, 256)
-        for (std::size_t i = 0; i < n; ++i) {
-            const Real pi_over_rho2 = pressure_term[i];
-            const Real viscous_scale = laminar ? morris.two_mu / state.density[i] : 0;
-            Vec<D> a = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
-                const Vec<D> x_ij = state.position[i] - state.position[j];
-                const Real r2 = squared_length<D>(x_ij);
-                const Real r = std::sqrt(r2);
-                const Vec<D> v_ij = state.velocity[i] - state.velocity[j];
-                Real factor = pi_over_rho2 + pressure_term[j];
-                if constexpr (artificial)
-                    factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
-                Vec<D> term = -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
-                if constexpr (laminar)
-                    term += (viscous_scale *
-                             morris.fluid(kernel, params.mass, state.density[j], r, r2)) *
-                            v_ij;
-                return term;
-            });
-            if (boundary) {
-                const auto xb = boundary->positions();
-                const auto volume = boundary->volumes();
-                // A local span, not boundary->velocity(b): the loop then vectorises.
-                const auto wall_velocity = boundary->velocities();
-                a += sum_over_neighbours(boundary_neighbours, i, [&](std::uint32_t b) {
-                    const Vec<D> x_ib = state.position[i] - xb[b];
-                    const Real r2 = squared_length<D>(x_ib);
-                    const Real r = std::sqrt(r2);
-                    const Vec<D> v_ib = state.velocity[i] - wall_velocity[b];
-                    Real factor = 2 * pi_over_rho2;
-                    if constexpr (extrapolated)
-                        factor = pi_over_rho2 + wall_pressure_term[b];
-                    // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise,
-                    // p_b = max(p_i + rho_i g . (x_b - x_i), 0).
-                    else if constexpr (hydrostatic)
-                        factor = pi_over_rho2 +
-                                 std::max(pi_over_rho2 - glm::dot(params.wall_gravity, x_ib) /
-                                                             state.density[i],
-                                          Real(0));
-                    if constexpr (artificial)
-                        factor += Pi(glm::dot(v_ib, x_ib), 2 * state.density[i], r2);
-                    Vec<D> term = -(params.rest_density * volume[b] * factor) *
-                                  boundary_gradient(kernel, x_ib, r);
-                    if constexpr (laminar)
-                        term += (viscous_scale * morris.wall(kernel, volume[b], r, r2)) * v_ib;
-                    return term;
-                });
-            }
-            state.acceleration[i] = a;
-        }
+    const auto accelerate = [&](auto artificial, auto laminar, auto hydrostatic,
+                                auto extrapolated) {
+        detail::accelerate_pairs<decltype(artificial)::value, decltype(laminar)::value,
+                                 decltype(hydrostatic)::value, decltype(extrapolated)::value>(
+            params, kernel, neighbours, boundary, boundary_neighbours, viscosities, pressure_term,
+            state, wall_pressure_term);
     };
     viscosities.dispatch([&](auto artificial, auto laminar) {
         if (extrapolated_walls)

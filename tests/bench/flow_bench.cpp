@@ -29,6 +29,7 @@
 #include "sph/single_precision/single_passes.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
+#include "sph/vector_clones.hpp"
 
 #include <algorithm>
 #include <array>
@@ -433,11 +434,12 @@ int main(int argc, char** argv) {
                 configs.push_back({p, t, r});
 
     const std::string header = fmt::format(
-        "{}, {} logical CPUs, compiler {}, single-precision passes {}; OMP_WAIT_POLICY {}, "
+        "{}, {} logical CPUs, compiler {}, single-precision passes {}, double-precision passes "
+        "{}; OMP_WAIT_POLICY {}, "
         "GOMP_SPINCOUNT {}; competing busy processes: {}; load average at start {}",
         cpu_model(), std::thread::hardware_concurrency(), __VERSION__,
-        fmt::format("{} ({})", simd_variant(), simd_instructions()), environment("OMP_WAIT_POLICY"),
-        environment("GOMP_SPINCOUNT"), load, load_average());
+        fmt::format("{} ({})", simd_variant(), simd_instructions()), vector_clone_variant(),
+        environment("OMP_WAIT_POLICY"), environment("GOMP_SPINCOUNT"), load, load_average());
     fmt::print("flow benchmark: {}\n{} rounds, configurations interleaved; adaptive steps as "
                "`sphclip run` takes them; particles are fluid particles (walls extra)\n",
                header, rounds);

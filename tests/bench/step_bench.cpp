@@ -37,6 +37,7 @@
 #include "sph/single_precision/single_passes.hpp"
 #include "sph/snapshot.hpp"
 #include "sph/state_hash.hpp"
+#include "sph/vector_clones.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -242,11 +243,11 @@ std::string stage_csv(const Result& r) {
 
 std::string machine() {
     return fmt::format("{}, {} cores (hardware_concurrency), {}, compiler {}, single-precision "
-                       "passes {}, load average at start {}",
+                       "passes {}, double-precision passes {}, load average at start {}",
                        bench::now_utc("%Y-%m-%d %H:%M"), std::thread::hardware_concurrency(),
                        bench::cpu_model(), __VERSION__,
                        fmt::format("{} ({})", simd_variant(), simd_instructions()),
-                       bench::load_average());
+                       vector_clone_variant(), bench::load_average());
 }
 
 int usage() {

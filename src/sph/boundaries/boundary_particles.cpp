@@ -3,6 +3,7 @@
 #include "sph/assert.hpp"
 #include "sph/headroom.hpp"
 #include "sph/lattice.hpp"
+#include "sph/vector_clones.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -278,8 +279,8 @@ BoundaryParticles<D> BoundaryParticles<D>::box_walls(const Box<D>& domain, Real 
 }
 
 template <int D>
-void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>> query,
-                                           NeighbourList& out) const {
+SPHCLIP_CLONED void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>> query,
+                                                          NeighbourList& out) const {
     const std::size_t n = query.size();
     out.start.resize(n + 1);
     out.start[0] = 0;

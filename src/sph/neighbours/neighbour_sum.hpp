@@ -12,6 +12,7 @@
 
 #include "sph/neighbours/neighbour_list.hpp"
 #include "sph/vec.hpp"
+#include "sph/vector_clones.hpp"
 
 #include <cstdint>
 #include <type_traits>
@@ -21,7 +22,8 @@ namespace sph {
 // sum over e in row i of term(e, index[e]); e (a std::size_t) is the pair's
 // place in the list, for arrays kept per pair.
 template <class Term>
-auto sum_over_pairs(const NeighbourList& list, std::size_t i, Term&& term_argument) {
+SPHCLIP_INLINE_IN_CLONES auto sum_over_pairs(const NeighbourList& list, std::size_t i,
+                                             Term&& term_argument) {
     // A local copy: loads of what the term captures, through the caller's
     // closure, are then seen not to change in the loop (otherwise GCC 12
     // gives up on it: "no vectype for stmt").
@@ -70,7 +72,8 @@ auto sum_over_pairs(const NeighbourList& list, std::size_t i, Term&& term_argume
 
 // sum over the neighbours j of particle i of term(j).
 template <class Term>
-auto sum_over_neighbours(const NeighbourList& list, std::size_t i, const Term& term) {
+SPHCLIP_INLINE_IN_CLONES auto sum_over_neighbours(const NeighbourList& list, std::size_t i,
+                                                  const Term& term) {
     return sum_over_pairs(list, i, [term](std::size_t, std::uint32_t j) { return term(j); });
 }
 

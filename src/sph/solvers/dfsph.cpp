@@ -5,6 +5,7 @@
 #include "sph/neighbours/neighbour_sum.hpp"
 #include "sph/pair_direction.hpp"
 #include "sph/solvers/density_with_walls.hpp"
+#include "sph/vector_clones.hpp"
 
 #include <algorithm>
 #include <optional>
@@ -33,8 +34,8 @@ constexpr Real jacobi_relaxation = 0.5;
 
 template <int D>
 template <class Kernel>
-void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
-                             State<D>& state) {
+SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel,
+                                            StepContext<D>& context, State<D>& state) {
     const std::size_t n = state.size();
     if (params.density_model == DensityModel::carried)
         find_neighbours_and_carried_density(params, kernel, context, state);

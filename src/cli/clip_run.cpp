@@ -802,7 +802,8 @@ std::optional<std::size_t> depth_composite_from(const Scene& scene, const RunOpt
     const auto& choice = scene.render.mpi_composite;
     if (choice == MpiComposite::gather || !depth_composite_problem(scene).empty())
         return std::nullopt;
-    return choice == MpiComposite::depth ? 0 : auto_depth_from_particles;
+    return choice == MpiComposite::depth ? std::optional<std::size_t>(0)
+                                         : auto_depth_from_particles;
 }
 
 int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& options,

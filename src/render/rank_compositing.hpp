@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -13,9 +14,9 @@
 namespace sph {
 
 // render.mpi_composite = auto composites a frame by depth from this many
-// particles on, measured (docs/mpi.md, "Rendering over ranks";
-// tests/bench/results/mpi_composite.csv).
-inline constexpr std::size_t auto_depth_from_particles = 100000;
+// particles on; none: never, until the crossing is measured (docs/mpi.md,
+// "Rendering over ranks": not measured yet, so auto keeps gather).
+inline constexpr std::optional<std::size_t> auto_depth_from_particles = std::nullopt;
 
 // A sample no sphere of the rank covers.
 inline constexpr std::uint32_t empty_sample = 0xffffffffu;

@@ -56,8 +56,9 @@ const KeyTable<Scene::Render>& render_keys() {
          .doc = "Under mpirun: gather, rank 0 draws every particle (each rank holds the whole "
                 "state); depth, each rank draws the spheres it owns and rank 0 composites them "
                 "by depth, then draws shadows' receivers, ambient occlusion and overlay once: "
-                "the same pixels. auto: depth from a measured particle count "
-                "(docs/mpi.md, \"Rendering over ranks\"). depth needs render.style spheres "
+                "the same pixels. auto: gather until the particle count from which depth is "
+                "faster is measured (docs/mpi.md, \"Rendering over ranks\"). depth needs "
+                "render.style spheres "
                 "with impostors and width x 4 samples within the GL's texture size.",
          .choices = auto_choice_names<MpiComposite>()},
         {.path = "cull_buried",

@@ -11,8 +11,10 @@
 #include "output/stats_csv.hpp"
 #include "output/surface_export.hpp"
 #include "parallel/rank_partition.hpp"
+#include "parallel/render_exchange.hpp"
 #include "parallel/thread_count_tuner.hpp"
 #include "parallel/world.hpp"
+#include "render/frame_renderer.hpp"
 #include "render/render_sink.hpp"
 #include "scene/scene_setup.hpp"
 #include "sph/surface.hpp"
@@ -161,8 +163,22 @@ class ClipRun {
         // has sinks and writes run.json.
         sim_.set_partition(
             parallel::make_rank_partition<D>(sim_.params(), sim_.effects(), scene.file));
+        // Every rank draws its own spheres when frames are composited by
+        // depth (render/depth_composite.hpp); the exchange is made on every
+        // rank at once.
+        if (composite_from_)
+            exchange_ = parallel::make_render_exchange(*composite_from_);
         if (leader_)
             add_sinks(std::move(gl_context));
+        if (exchange_ && render_)
+            render_->share_over_ranks(exchange_.get());
+        if (exchange_ && !leader_) {
+            rank_gl_ = options_.backend.empty()
+                           ? make_gl_context(scene_.render.backend)
+                           : make_gl_context(std::string_view(options_.backend));
+            rank_renderer_ = std::make_unique<FrameRenderer>(make_render_settings(scene_));
+            rank_renderer_->share_over_ranks(exchange_.get());
+        }
         // Only the fields some sink reads are computed for output and copied
         // (rank 0's sinks: every rank computes what rank 0 does).
         for (const auto& sink : sinks_)
@@ -363,7 +379,7 @@ class ClipRun {
         snapshot_.stats = measure_frame(sim_.params(), sim_.state());
         snapshot_.wall_seconds = wall();
         copy_fields(sim_.state(), snapshot_, fields_);
-        if (render_ && D == 3 && scene_.render.cull_buried)
+        if ((render_ || rank_renderer_) && D == 3 && scene_.render.cull_buried)
             mark_buried(sim_.state(), sim_.neighbours(), scene_.fluid.spacing, snapshot_.buried);
         frame_fields_s_ += seconds_since(start);
     }
@@ -407,6 +423,9 @@ class ClipRun {
         const auto start = Clock::now();
         for (auto& sink : sinks_)
             sink->write(snapshot_);
+        // Over MPI ranks, by depth: this rank's spheres to rank 0.
+        if (rank_renderer_)
+            rank_renderer_->render(snapshot_);
         sinks_s_ += seconds_since(start);
         ++written_;
         say_new_warnings();
@@ -450,8 +469,10 @@ class ClipRun {
                    : end.status == RunStatus::unstable ? exit_unstable
                                                        : exit_interrupted;
         }
-        if (const Partition<D>* partition = sim_.partition())
+        if (const Partition<D>* partition = sim_.partition()) {
             record_.document["mpi"] = partition->report();
+            record_.document["mpi"]["render"] = render_over_ranks_json();
+        }
         if (render_ && !render_->poses().empty())
             record_.document["camera"] = record_cameras(*render_);
         std::string run_json_note;
@@ -644,6 +665,7 @@ class ClipRun {
             const FrameCost cost = k < costs.size() ? costs[k] : FrameCost{};
             simulate_total += simulate_seconds_[k];
             total.render_s += cost.render_s;
+            total.composite_s += cost.composite_s;
             total.readback_s += cost.readback_s;
             total.encode_s += cost.encode_s;
             total.encode_wait_s += cost.encode_wait_s;
@@ -665,7 +687,8 @@ class ClipRun {
         }
         StageTimes after, overlapped;
         after.add(Stage::frame_statistics, frame_fields_s_);
-        after.add(Stage::render, total.render_s);
+        after.add(Stage::render, total.render_s - total.composite_s);
+        after.add(Stage::composite, total.composite_s);
         after.add(Stage::readback, total.readback_s);
         after.add(Stage::encode_wait, total.encode_wait_s);
         after.add(Stage::output, output);
@@ -690,6 +713,16 @@ class ClipRun {
     }
 
     double wall() const { return seconds_since(start_); }
+
+    // run.json "mpi" "render": how the frames reached rank 0's picture.
+    json render_over_ranks_json() const {
+        const auto& choice = scene_.render.mpi_composite;
+        const std::size_t by_depth = render_ ? render_->frames_composited() : 0;
+        return {{"mpi_composite", choice ? json(choice_name(*choice)) : json("auto")},
+                {"depth_from_particles", composite_from_ ? json(*composite_from_) : json(nullptr)},
+                {"frames_by_depth", by_depth},
+                {"frames_gathered", render_ ? written_ - by_depth : 0}};
+    }
 
     // run.json "thread_counts": the steps at each thread count.
     json thread_counts_json() const {
@@ -718,6 +751,13 @@ class ClipRun {
     const std::uint64_t frames_;
     std::vector<std::unique_ptr<FrameSink>> sinks_;
     RenderSink* render_ = nullptr; // in sinks_, when frames are drawn
+    // Over MPI ranks with depth compositing: the exchange (every rank), and
+    // the other ranks' context and renderer, which draw their own spheres.
+    const std::optional<std::size_t> composite_from_ =
+        depth_composite_from(scene_, options_, parallel::size());
+    std::unique_ptr<RankCompositing> exchange_;
+    std::unique_ptr<GlContext> rank_gl_;
+    std::unique_ptr<FrameRenderer> rank_renderer_;
     FrameFields fields_{.pressure = false};
     RunRecord record_;
     Progress progress_;
@@ -734,6 +774,37 @@ class ClipRun {
 };
 
 } // namespace
+
+// The flat layers lay a frame's samples side by side (depth_composite.hpp):
+// 4 samples (RenderSettings::samples) times the width within llvmpipe's
+// 16384-texel textures.
+constexpr int layer_width_limit = 16384;
+
+std::string depth_composite_problem(const Scene& scene) {
+    if (scene.render.style != FluidStyle::spheres ||
+        scene.render.spheres != SphereDrawing::impostor)
+        return "depth compositing draws impostor spheres only (render.style spheres, "
+               "render.spheres impostor); a surface is one of all the particles, and meshes' "
+               "depth is per sample; use gather or auto";
+    const RenderSettings settings = make_render_settings(scene);
+    if (std::int64_t(settings.width) * settings.samples > layer_width_limit)
+        return fmt::format("depth compositing lays a frame's {} samples a pixel side by side, "
+                           "at most {} pixels wide: render.size's width {} is wider; use gather "
+                           "or auto",
+                           settings.samples, layer_width_limit / settings.samples, settings.width);
+    return {};
+}
+
+std::optional<std::size_t> depth_composite_from(const Scene& scene, const RunOptions& options,
+                                                int ranks) {
+    if (ranks < 2 || !(options.png || options.mp4))
+        return std::nullopt;
+    const auto& choice = scene.render.mpi_composite;
+    if (choice == MpiComposite::gather || !depth_composite_problem(scene).empty())
+        return std::nullopt;
+    return choice == MpiComposite::depth ? std::optional<std::size_t>(0)
+                                         : auto_depth_from_particles;
+}
 
 int run_clip(const Scene& scene, const fs::path& folder, const RunOptions& options,
              std::unique_ptr<GlContext> gl_context) {

@@ -253,6 +253,11 @@ int run_command(const RunOptions& given) {
     if (options.png || options.mp4)
         gl_context = options.backend.empty() ? make_gl_context(scene.render.backend)
                                              : make_gl_context(std::string_view(options.backend));
+    // Over MPI ranks, depth compositing asked for where it cannot draw.
+    if (parallel::size() > 1 && (options.png || options.mp4) &&
+        scene.render.mpi_composite == MpiComposite::depth)
+        if (const std::string problem = depth_composite_problem(scene); !problem.empty())
+            throw InputError(scene.file, "render.mpi_composite", problem);
     if (gl_context) {
         // A frame the context cannot draw is known now, before any output.
         const RenderSettings settings = make_render_settings(scene);

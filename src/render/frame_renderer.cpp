@@ -1,6 +1,7 @@
 #include "render/frame_renderer.hpp"
 
 #include "render/camera.hpp"
+#include "render/depth_composite.hpp"
 #include "render/frame_end.hpp"
 #include "render/gl_resources.hpp"
 #include "render/light_rig.hpp"
@@ -40,6 +41,11 @@ struct FrameRenderer::Parts {
     CameraPose pose;
     // The key light, its shadows and the ambient occlusion.
     LightRig light;
+    // Over MPI ranks with depth compositing: this rank's spheres, and on
+    // rank 0 the other ranks' layers (depth_composite.hpp).
+    std::unique_ptr<RankLayer> layer;
+    std::unique_ptr<LayerImport> import;
+    std::vector<FlatLayer> layers;
 
     Parts(const RenderSettings& s, std::shared_ptr<FrameSurface> shared)
         : target(s.width, s.height, s.samples),
@@ -74,20 +80,37 @@ double FrameRenderer::scene_aspect() const {
 }
 
 std::size_t FrameRenderer::last_drawn() const {
-    return parts_->batch.drawn();
+    return composited_ ? std::size_t(counts_[0]) : parts_->batch.drawn();
 }
 std::size_t FrameRenderer::last_outside_view() const {
-    return parts_->batch.outside_view();
+    return composited_ ? std::size_t(counts_[1]) : parts_->batch.outside_view();
 }
 
 std::size_t FrameRenderer::last_below_range() const {
-    return parts_->batch.below_range();
+    return composited_ ? std::size_t(counts_[2]) : parts_->batch.below_range();
 }
 std::size_t FrameRenderer::last_above_range() const {
-    return parts_->batch.above_range();
+    return composited_ ? std::size_t(counts_[3]) : parts_->batch.above_range();
+}
+
+void FrameRenderer::share_over_ranks(RankCompositing* ranks) {
+    ranks_ = ranks;
+    if (!ranks_)
+        return;
+    if (settings_.style != FluidStyle::spheres || settings_.spheres != SphereDrawing::impostor)
+        throw std::logic_error("depth compositing draws impostor spheres only");
+    Parts& p = *parts_;
+    p.layer = std::make_unique<RankLayer>(settings_.width, settings_.height, settings_.samples);
+    if (ranks_->rank() == 0)
+        p.import =
+            std::make_unique<LayerImport>(settings_.width, settings_.height, settings_.samples);
+    gl::check_gl("depth compositing set-up");
 }
 
 Image FrameRenderer::render(const Snapshot& frame) {
+    composited_ = ranks_ && ranks_->by_depth(frame.size());
+    if (composited_)
+        return render_composited(frame);
     Parts& p = *parts_;
     const auto start = Clock::now();
     PartClock parts(time_parts_, timings_.part_seconds);
@@ -150,6 +173,83 @@ Image FrameRenderer::render(const Snapshot& frame) {
     parts.mark(FramePart::occlusion);
     // The glass, the solids' lines and the overlay, then the pixels read
     // back.
+    return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
+                        timings_, parts);
+}
+
+// Each rank draws the spheres it owns into its layer, lit by the shadow
+// map of every rank's casters; rank 0 writes the layers into its frame, in
+// the one-process frame's drawing order, and draws the rest once
+// (depth_composite.hpp).
+Image FrameRenderer::render_composited(const Snapshot& frame) {
+    Parts& p = *parts_;
+    const auto start = Clock::now();
+    PartClock parts(time_parts_, timings_.part_seconds);
+    const bool leader = ranks_->rank() == 0;
+    // Every rank has the frame's camera: the same snapshot, the same rig.
+    p.pose = p.rig.pose(frame);
+    const Camera camera = make_camera(settings_, p.pose, p.layout);
+    const auto [first, last] = owned_range(frame.size(), ranks_->rank(), ranks_->ranks());
+    p.batch.fill(frame, camera, p.outline_rule, first, last);
+    counts_ = {p.batch.drawn(), p.batch.outside_view(), p.batch.below_range(),
+               p.batch.above_range()};
+    ranks_->sum_on_leader(counts_);
+    timings_.fill_seconds = seconds_since(start);
+    parts.mark(FramePart::fill);
+    p.spheres.upload(p.batch);
+    parts.mark(FramePart::upload);
+    // The shadow map of every rank's spheres (and the solids, drawn by
+    // every rank: the minimum is the same).
+    p.light.combine_shadows(
+        [&](std::span<std::uint32_t> depths) { ranks_->min_over_ranks(depths); });
+    const Lighting lighting =
+        p.light.light(camera, {[&](const Camera& light) { p.spheres.draw_depth(p.batch, light); },
+                               [&](const Camera& light) {
+                                   p.scenery.draw_depth(light);
+                               }});
+    p.light.combine_shadows(nullptr);
+    p.spheres.set_lighting(lighting);
+    p.scenery.set_lighting(lighting);
+    parts.mark(FramePart::shadow_map);
+
+    // This rank's spheres, alone.
+    const auto composite_start = Clock::now();
+    p.layer->begin();
+    gl::bind_colour_map(p.colour_map);
+    p.spheres.draw_layer(p.batch, camera);
+    p.layer->flatten();
+    if (!leader) {
+        p.layer->read(ranks_->layer_to_send());
+        ranks_->send_layer();
+        parts.mark(FramePart::fluid);
+        timings_.draw_seconds = seconds_since(start);
+        composite_seconds_ = seconds_since(composite_start);
+        return Image(0, 0);
+    }
+    // Rank 0: the backdrop and the floor, then every rank's spheres.
+    p.target.begin();
+    p.overlay.backdrop().draw();
+    gl::bind_colour_map(p.colour_map);
+    parts.mark(FramePart::backdrop);
+    p.scenery.draw_floor(camera);
+    parts.mark(FramePart::floor);
+    p.layers.assign(std::size_t(ranks_->ranks()), FlatLayer{});
+    p.layers[0] = p.layer->flat();
+    const std::size_t samples = std::size_t(settings_.width) * std::size_t(settings_.height) *
+                                std::size_t(settings_.samples);
+    ranks_->receive_layers(samples, [&](int rank, const RankLayerPixels& layer) {
+        p.layers[std::size_t(rank)] = p.import->upload(std::size_t(rank) - 1, layer);
+    });
+    glBindFramebuffer(GL_FRAMEBUFFER, p.target.framebuffer());
+    p.import->draw(p.layers, 0);
+    p.import->draw(p.layers, triangle_group_bit);
+    gl::bind_colour_map(p.colour_map);
+    composite_seconds_ = seconds_since(composite_start);
+    parts.mark(FramePart::fluid);
+    p.scenery.draw_solids(camera);
+    parts.mark(FramePart::solids);
+    p.light.occlude(p.target, camera);
+    parts.mark(FramePart::occlusion);
     return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
                         timings_, parts);
 }

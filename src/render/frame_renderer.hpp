@@ -13,13 +13,16 @@
 #include "render/render_settings.hpp"
 #include "sph/snapshot.hpp"
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 
 namespace sph {
 
 class FrameSurface;
+class RankCompositing;
 
 struct FrameTimings {
     double fill_seconds = 0;     // culling and filling the instances (part of draw_seconds)
@@ -47,7 +50,19 @@ class FrameRenderer {
     FrameRenderer(const FrameRenderer&) = delete;
     FrameRenderer& operator=(const FrameRenderer&) = delete;
 
+    // The frame's image; over MPI ranks with depth compositing, every rank
+    // calls it with the same frame and only rank 0's image is the frame
+    // (the others' is empty: 0 x 0).
     Image render(const Snapshot& frame);
+    // Over MPI ranks: `ranks` decides, frame by frame, whether the frame is
+    // composited by depth (depth_composite.hpp); null: drawn here whole.
+    // The spheres style with impostors only.
+    void share_over_ranks(RankCompositing* ranks);
+    // Whether the last frame was composited by depth, and what that cost
+    // rank 0: drawing its own layer, waiting for and uploading the others',
+    // and writing them into the frame (s).
+    bool last_composited() const { return composited_; }
+    double last_composite_seconds() const { return composite_seconds_; }
     const FrameTimings& last_timings() const { return timings_; }
     // Wait for each part of the frame to finish before the next begins, and
     // time it (FrameTimings::part_seconds): the benchmarks' breakdown. The
@@ -69,11 +84,19 @@ class FrameRenderer {
     const std::string& font_warning() const;
 
   private:
+    Image render_composited(const Snapshot& frame);
+
     struct Parts;
     RenderSettings settings_;
     std::unique_ptr<Parts> parts_;
     FrameTimings timings_;
     bool time_parts_ = false;
+    RankCompositing* ranks_ = nullptr;
+    bool composited_ = false;
+    double composite_seconds_ = 0;
+    // Over ranks, the counts of every rank's particles (drawn, outside the
+    // view, below and above the range), summed on rank 0.
+    std::array<std::uint64_t, 4> counts_{};
 };
 
 } // namespace sph

@@ -19,6 +19,8 @@ Lighting LightRig::light(const Camera& camera, const std::vector<ShadowMap::Draw
     Lighting lighting = key_light(camera, up_, palette_);
     if (shadow_map_ && !camera.orthographic) {
         shadow_map_->render(camera, reach_, softness_, lighting, casters);
+        if (combine_)
+            shadow_map_->combine(combine_);
         shadow_map_->bind();
     }
     return lighting;

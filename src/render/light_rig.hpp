@@ -10,7 +10,10 @@
 #include "render/render_settings.hpp"
 #include "render/shadow_pass.hpp"
 
+#include <functional>
 #include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 namespace sph {
@@ -23,6 +26,11 @@ class LightRig {
     // The frame's light; with shadows, the map rendered from `casters` and
     // bound (before the frame's target is: it leaves its own bound).
     Lighting light(const Camera& camera, const std::vector<ShadowMap::DrawDepth>& casters);
+    // Over MPI ranks, the shadow map's depths made every rank's minimum
+    // (ShadowMap::combine) in the frames lit while it is set; none: not.
+    void combine_shadows(std::function<void(std::span<std::uint32_t>)> combine) {
+        combine_ = std::move(combine);
+    }
     // With ambient occlusion, the opaque frame in `target` darkened by it.
     void occlude(const gl::RenderTarget& target, const Camera& camera);
 
@@ -32,6 +40,7 @@ class LightRig {
     double reach_, softness_;
     std::optional<ShadowMap> shadow_map_;
     std::optional<AmbientOcclusion> occlusion_;
+    std::function<void(std::span<std::uint32_t>)> combine_;
 };
 
 } // namespace sph

@@ -61,10 +61,13 @@ class ParticleBatch {
     // field from the settings.
     ParticleBatch(const RenderSettings& settings, std::size_t groups);
 
-    // Refills the groups from `frame`, in the snapshot's order within each
-    // group: group_of(const SphereImage&) gives each drawn particle's group.
+    // Refills the groups from `frame`'s particles [first, last), in the
+    // snapshot's order within each group: group_of(const SphereImage&) gives
+    // each drawn particle's group. By default every particle; over MPI ranks
+    // with depth compositing, the rank's own (depth_composite.hpp).
     template <class GroupOf>
-    void fill(const Snapshot& frame, const Camera& camera, GroupOf group_of);
+    void fill(const Snapshot& frame, const Camera& camera, GroupOf group_of, std::size_t first = 0,
+              std::size_t last = std::numeric_limits<std::size_t>::max());
 
     std::size_t groups() const { return counts_.size(); }
     std::size_t count(std::size_t group) const { return counts_[group]; }
@@ -114,7 +117,8 @@ struct OutlineRule {
 };
 
 template <class GroupOf>
-void ParticleBatch::fill(const Snapshot& frame, const Camera& camera, GroupOf group_of) {
+void ParticleBatch::fill(const Snapshot& frame, const Camera& camera, GroupOf group_of,
+                         std::size_t first, std::size_t last) {
     const std::size_t n = frame.size();
     for (std::vector<float>& group : instances_)
         group.resize(n * 4);
@@ -129,7 +133,7 @@ void ParticleBatch::fill(const Snapshot& frame, const Camera& camera, GroupOf gr
     const bool speed = field_ == ParticleField::speed;
     const std::vector<double>& field =
         field_ == ParticleField::density ? frame.density : frame.pressure;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = first; i < std::min(n, last); ++i) {
         if (cull_buried && frame.buried[i])
             continue;
         glm::dvec4 p(0, 0, 0, 1);

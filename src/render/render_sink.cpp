@@ -41,6 +41,10 @@ void RenderSink::write(const Snapshot& frame) {
     const auto image = std::make_shared<const Image>(renderer_.render(frame));
     cost.render_s = renderer_.last_timings().draw_seconds;
     cost.readback_s = renderer_.last_timings().readback_seconds;
+    if (renderer_.last_composited()) {
+        cost.composite_s = renderer_.last_composite_seconds();
+        ++frames_composited_;
+    }
     costs_.push_back(cost);
     poses_.push_back({frame.frame, double(frame.time), renderer_.last_pose()});
     check_range(frame);

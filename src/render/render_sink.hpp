@@ -23,6 +23,7 @@ namespace sph {
 // work when it runs on its worker thread.
 struct FrameCost {
     double render_s = 0, readback_s = 0;
+    double composite_s = 0;   // over MPI ranks, by depth: part of render_s
     double encode_s = 0;      // colour conversion, libx264, muxing
     double encode_wait_s = 0; // the caller blocked on a full encoder queue
 };
@@ -45,6 +46,9 @@ class RenderSink final : public FrameSink {
     }
 
     const GlInfo& gl_info() const { return context_->info(); }
+    // Over MPI ranks: the frames composited by depth (FrameRenderer).
+    void share_over_ranks(RankCompositing* ranks) { renderer_.share_over_ranks(ranks); }
+    std::size_t frames_composited() const { return frames_composited_; }
     // Per frame written; the encoder's part is complete after finish().
     std::vector<FrameCost> costs() const;
     // The encoder's times, totals included (none without a video).
@@ -76,6 +80,7 @@ class RenderSink final : public FrameSink {
     std::vector<std::string> warnings_;
     std::vector<FramePose> poses_;
     bool range_warned_ = false;
+    std::size_t frames_composited_ = 0;
 };
 
 } // namespace sph

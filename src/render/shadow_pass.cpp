@@ -76,6 +76,19 @@ void ShadowMap::render(const Camera& eye, double reach, double softness, Lightin
     lighting.shadow_offset = 1.5f * texel;
 }
 
+void ShadowMap::combine(const std::function<void(std::span<std::uint32_t>)>& combine) {
+    texels_.resize(std::size_t(size_) * std::size_t(size_));
+    glBindTexture(GL_TEXTURE_2D, depth_.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    // 24-bit depth as 32-bit integers: k -> k 2^8 + k / 2^16 and back
+    // k = v / 2^8, exact both ways (unlike through floats).
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, texels_.data());
+    combine(texels_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size_, size_, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
+                    texels_.data());
+}
+
 void ShadowMap::bind() const {
     glActiveTexture(GL_TEXTURE0 + shadow_map_unit);
     glBindTexture(GL_TEXTURE_2D, depth_.id());

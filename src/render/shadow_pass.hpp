@@ -10,7 +10,9 @@
 #include "render/gl_resources.hpp"
 #include "render/lighting.hpp"
 
+#include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 namespace sph {
@@ -31,6 +33,11 @@ class ShadowMap {
     // offsets against self-shadowing. Leaves its framebuffer bound.
     void render(const Camera& eye, double reach, double softness, Lighting& lighting,
                 const std::vector<DrawDepth>& casters);
+    // Over MPI ranks each draws the spheres it owns (depth_composite.hpp):
+    // `combine` gets the map's depths (24 bits scaled to 32, as GL gives
+    // them) and makes them every rank's minimum, which is the map of every
+    // caster whatever the order drawn; the map takes them back.
+    void combine(const std::function<void(std::span<std::uint32_t>)>& combine);
     // Binds the map to shadow_map_unit.
     void bind() const;
     int size() const { return size_; }
@@ -39,6 +46,7 @@ class ShadowMap {
     int size_;
     gl::Texture depth_;
     gl::Framebuffer framebuffer_;
+    std::vector<std::uint32_t> texels_; // combine()'s scratch
 };
 
 // The map's side for a scene of bounding radius `reach` whose spheres have

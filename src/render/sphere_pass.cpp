@@ -1,5 +1,6 @@
 #include "render/sphere_pass.hpp"
 
+#include "render/depth_composite.hpp"
 #include "render/sphere_geometry.hpp"
 
 #include <cmath>
@@ -37,6 +38,9 @@ SpherePass::SpherePass(const RenderSettings& s, std::string_view impostor_define
         depth_program_ =
             gl::link_program(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag,
                              "#define DEPTH_ONLY\n" + std::string(impostor_defines) + lighting);
+        layer_program_ =
+            gl::link_program(shaders::sphere_impostor_vert, shaders::sphere_impostor_frag,
+                             "#define RANK_LAYER\n" + std::string(impostor_defines) + lighting);
         make_outlines();
     } else {
         program_ = gl::link_program(shaders::sphere_mesh_vert, shaders::sphere_mesh_frag, lighting);
@@ -131,6 +135,10 @@ void SpherePass::draw_depth(const ParticleBatch& batch, const Camera& light) con
     draw_with(impostor_ ? depth_program_.id() : program_.id(), batch, light);
 }
 
+void SpherePass::draw_layer(const ParticleBatch& batch, const Camera& camera) const {
+    draw_with(layer_program_.id(), batch, camera);
+}
+
 void SpherePass::draw_with(GLuint program, const ParticleBatch& batch, const Camera& camera) const {
     if (batch.drawn() == 0)
         return;
@@ -141,7 +149,12 @@ void SpherePass::draw_with(GLuint program, const ParticleBatch& batch, const Cam
                                 GLsizei(batch.count(square_group)));
         return;
     }
+    // A rank's layer marks the spheres drawn on triangles (depth_composite.hpp);
+    // other programs have no such uniform, and location -1 sets nothing.
+    const GLint group_bit = glGetUniformLocation(program, "u_group_bit");
+    glUniform1ui(group_bit, 0u);
     draw_outlines(Outline::square, first(square_group), batch.count(square_group));
+    glUniform1ui(group_bit, triangle_group_bit);
     if (batch.groups() > triangle_group)
         draw_outlines(Outline::triangle, first(triangle_group), batch.count(triangle_group));
 }

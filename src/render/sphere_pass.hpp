@@ -36,6 +36,10 @@ class SpherePass {
     void draw(const ParticleBatch& batch, const Camera& camera) const;
     // The same spheres' depth only, through `light` (the shadow map's pass).
     void draw_depth(const ParticleBatch& batch, const Camera& light) const;
+    // Draws the same spheres into a rank's layer (depth_composite.hpp): the
+    // impostors' colour and depth as draw() gives them, and each sample's
+    // depth bits and group. Impostors only.
+    void draw_layer(const ParticleBatch& batch, const Camera& camera) const;
     // The light the next draws use; by default lit as in 2D, no shadows.
     void set_lighting(const Lighting& lighting) { lighting_ = lighting; }
 
@@ -57,6 +61,7 @@ class SpherePass {
     std::array<float, 2> range_;
     gl::Program program_;       // the impostor's or the mesh's
     gl::Program depth_program_; // the impostor's depth only; empty for meshes
+    gl::Program layer_program_; // the impostor's for a rank's layer; empty for meshes
     Lighting lighting_;
     gl::Buffer instances_;
     std::size_t capacity_ = 0; // instances the buffer holds

@@ -28,6 +28,10 @@ enum class Background { light, dark };
 enum class GlBackend { egl, osmesa };
 // What the default camera frames (render.camera.fit).
 enum class CameraFit { domain, fluid, follow };
+// Over MPI ranks, how a frame's spheres reach rank 0 (render.mpi_composite;
+// a scene's "auto" is none: by particle count): rank 0 draws them all, or
+// each rank draws its own and rank 0 composites by depth.
+enum class MpiComposite { gather, depth };
 
 // Each enum's names, in the order of its values.
 template <class E>
@@ -46,6 +50,7 @@ SPH_CHOICE_NAMES(FluidStyle, "spheres", "surface")
 SPH_CHOICE_NAMES(Background, "light", "dark")
 SPH_CHOICE_NAMES(GlBackend, "egl", "osmesa")
 SPH_CHOICE_NAMES(CameraFit, "domain", "fluid", "follow")
+SPH_CHOICE_NAMES(MpiComposite, "gather", "depth")
 #undef SPH_CHOICE_NAMES
 
 template <class E>

@@ -132,6 +132,8 @@ struct Scene {
         bool floor = true;                  // 3D: a floor under the domain
         bool tank = true;                   // 3D: the domain's walls as faint glass
         Background background = Background::light;
+        // Over MPI ranks; none (auto): by depth from a measured particle count.
+        std::optional<MpiComposite> mpi_composite;
         struct Camera {
             // What the default camera frames: the domain, the fluid where it
             // starts (blocks and emitters), or the fluid's bounds as they move.

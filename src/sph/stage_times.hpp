@@ -48,6 +48,10 @@ enum class Stage : std::uint8_t {
     // Around the step (the run command).
     frame_statistics,
     render,
+    // Over MPI ranks with depth compositing (render/depth_composite.hpp),
+    // rank 0's part of drawing: its own layer, the others' received and
+    // written into the frame (the rest of the frame is `render`).
+    composite,
     readback,
     encode_wait,
     output, // stats, exports, handing frames to the writers
@@ -57,27 +61,17 @@ enum class Stage : std::uint8_t {
 
 // The names the stage table and run.json's `stages` print, by Stage.
 inline constexpr std::array<std::string_view, std::size_t(Stage::count)> stage_names{
-    "neighbour search",
-    "boundary neighbours",
-    "density",
-    "pressure",
-    "density rate",
-    "wall pressure",
-    "divergence solve",
-    "pressure solve",
-    "integration",
-    "time step",
-    "watchdog",
-    "reorder",
-    "rank halo",
-    "halo exchange",
-    "rank gather",
-    "frame statistics",
-    "render",
-    "readback",
-    "encode wait",
-    "output",
-    "encode"};
+    "neighbour search", "boundary neighbours",
+    "density",          "pressure",
+    "density rate",     "wall pressure",
+    "divergence solve", "pressure solve",
+    "integration",      "time step",
+    "watchdog",         "reorder",
+    "rank halo",        "halo exchange",
+    "rank gather",      "frame statistics",
+    "render",           "composite",
+    "readback",         "encode wait",
+    "output",           "encode"};
 
 constexpr std::string_view stage_name(Stage stage) {
     return stage_names[std::size_t(stage)];

@@ -18,14 +18,13 @@
 //   build/sphclip_bench_render --tiny                # one small frame per case (CI)
 //   build/sphclip_bench_render --light --size 1920x1080   # light and depth's rows only
 //   build/sphclip_bench_render --parts --counts 100000     # ... each split into its parts
+#include "bench_particles.hpp"
 #include "bench_support.hpp"
 #include "output/image_compare.hpp"
 #include "output/png_io.hpp"
 #include "render/frame_renderer.hpp"
 #include "render/gl_context.hpp"
 #include "render_variants.hpp"
-#include "sph/neighbours/spatial_hash.hpp"
-#include "sph/surface.hpp"
 
 #include <algorithm>
 #include <array>
@@ -39,7 +38,6 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <memory>
-#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -47,46 +45,6 @@
 using namespace sph;
 
 namespace {
-
-// n particles: a cube of fluid on a lattice, or uniformly scattered in the
-// same box, with speeds that vary so the colour map is exercised; a block's
-// buried particles are marked as a run marks them, from its neighbour lists.
-Snapshot make_particles(std::size_t n, bool block, double spacing, double box) {
-    Snapshot s;
-    s.dimension = 3;
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> u(0, 1);
-    const std::size_t side = std::size_t(std::ceil(std::cbrt(double(n))));
-    s.position.reserve(3 * n);
-    s.velocity.reserve(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-        double x, y, z;
-        if (block) {
-            x = (double(i % side) + 0.5) * spacing;
-            y = (double(i / side % side) + 0.5) * spacing;
-            z = (double(i / side / side) + 0.5) * spacing;
-        } else {
-            x = u(rng) * box;
-            y = u(rng) * box;
-            z = u(rng) * box;
-        }
-        s.position.insert(s.position.end(), {x, y, z});
-        s.velocity.insert(s.velocity.end(), {2 * y / box, 0, 0});
-        s.density.push_back(1000);
-        s.pressure.push_back(0);
-        s.id.push_back(std::uint32_t(i));
-    }
-    if (block) {
-        State<3> state;
-        state.resize(n);
-        for (std::size_t i = 0; i < n; ++i)
-            state.position[i] = {s.position[3 * i], s.position[3 * i + 1], s.position[3 * i + 2]};
-        NeighbourList list;
-        SpatialHash<3>().find(state.position, 2.2 * spacing, list);
-        mark_buried(state, list, spacing, s.buried);
-    }
-    return s;
-}
 
 // A way to draw the spheres: each row differs from "ray-cast" (every sphere
 // a ray-cast impostor on a square) in what it names; "default" takes
@@ -282,7 +240,7 @@ int main(int argc, char** argv) {
             // The spacing shrinks with the count in a fixed 0.1 m box: the
             // block's spheres are ~8 px across at 100k, ~4 px at 1M.
             const double box = 0.1, spacing = box / std::ceil(std::cbrt(double(n)));
-            const Snapshot s = make_particles(n, block, spacing, box);
+            const Snapshot s = bench::make_particles(n, block, spacing, box);
             for (const std::string& backend : backends) {
                 auto context = make_gl_context(backend);
                 std::vector<Row> rows;

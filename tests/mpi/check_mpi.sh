@@ -12,7 +12,9 @@
 #   tests/mpi/check_mpi.sh build/sphclip MPIRUN [CASE]
 #
 # CASE: hashes:SCENE (a scene of tests/mpi/scenes), video, interrupt,
-# refused, or all (the default). Exits 77 (ctest:
+# refused, composite:SCENE:BACKEND (render.mpi_composite = depth: the PNGs
+# and MP4 of 2 and 3 ranks equal the plain run's, byte for byte; egl or
+# osmesa), or all (the default). Exits 77 (ctest:
 # skipped) when mpirun cannot start two processes here.
 set -euo pipefail
 
@@ -138,6 +140,54 @@ check_video() {
     echo "mpi: video: 2 ranks write the plain run's MP4, byte for byte"
 }
 
+check_composite() { # scene, backend
+    local name=$1 backend=$2
+    local scene="$here/scenes/$name.json"
+    [ -f "$scene" ] || fail "no scene $scene"
+    # 3D: shadows (every rank's casters) and ambient occlusion (the
+    # composited depth) on, at a size where some spheres are drawn on squares
+    # and the smaller on triangles (the two groups' order).
+    local look=()
+    grep -q '"dimension": 3' "$scene" &&
+        look=(--set render.shadows=true --set render.ambient_occlusion=true
+            --set "render.size=[480,270]")
+    local plain="$work/composite-$name-$backend-plain"
+    timeout 120 "$sphclip" run "$scene" --out "$plain" --backend "$backend" --threads 1 \
+        --quiet "${look[@]}" > "$plain.log" 2>&1 || {
+        cat "$plain.log"
+        echo "mpi: composite: no OpenGL ($backend) here; not checked"
+        return 0
+    }
+    for ranks in 2 3; do
+        out="$work/composite-$name-$backend-np$ranks"
+        mpi "$ranks" run "$scene" --out "$out" --backend "$backend" --threads 1 --quiet \
+            "${look[@]}" --set render.mpi_composite=depth > "$out.log" 2>&1 || {
+            cat "$out.log"
+            fail "composite: $name, $backend, $ranks ranks: mpirun failed"
+        }
+        for png in "$plain"/frames/*.png; do
+            cmp -s "$png" "$out/frames/$(basename "$png")" ||
+                fail "composite: $name, $backend, $ranks ranks: $(basename "$png") differs" \
+                    "from the plain run's"
+        done
+        cmp -s "$plain/clip.mp4" "$out/clip.mp4" ||
+            fail "composite: $name, $backend, $ranks ranks: the MP4 differs from the plain run's"
+        python3 - "$out/run.json" "$plain/run.json" <<'PY' ||
+import json, sys
+run, plain = (json.load(open(p)) for p in sys.argv[1:3])
+render = run["mpi"]["render"]
+assert render["mpi_composite"] == "depth", render
+assert render["frames_by_depth"] == run["frames"] > 0, (render, run["frames"])
+assert any(s["name"] == "composite" for s in run["stages"]), run["stages"]
+# The colour range's warnings count every rank's particles.
+assert run.get("warnings") == plain.get("warnings"), (run.get("warnings"), plain.get("warnings"))
+PY
+            fail "composite: $name, $backend, $ranks ranks: run.json"
+    done
+    echo "mpi: composite: $name, $backend: 2 and 3 ranks composited by depth give the plain" \
+        "run's PNGs and MP4, byte for byte"
+}
+
 check_interrupt() {
     scene="$here/scenes/paddle_obstacle_2d.json"
     out="$work/interrupted"
@@ -192,6 +242,10 @@ check_refused() {
 
 case "$case_name" in
 hashes:*) check_hashes "${case_name#hashes:}" ;;
+composite:*)
+    spec=${case_name#composite:}
+    check_composite "${spec%%:*}" "${spec#*:}"
+    ;;
 video) check_video ;;
 interrupt) check_interrupt ;;
 refused) check_refused ;;
@@ -200,6 +254,10 @@ all)
         check_hashes "$(basename "$scene" .json)"
     done
     check_video
+    for backend in egl osmesa; do
+        check_composite jet_3d "$backend"
+        check_composite paddle_obstacle_2d "$backend"
+    done
     check_interrupt
     check_refused
     ;;

@@ -51,6 +51,18 @@ const KeyTable<Scene::Render>& render_keys() {
                 "and shaded as water; 2D: the filled region with its outline) and coloured by "
                 "the colour field at its vertices (render.surface.*).",
          .choices = choice_names<FluidStyle>()},
+        {.path = "mpi_composite",
+         .field = auto_enum_field<&S::mpi_composite>(),
+         .doc = "Under mpirun: gather, rank 0 draws every particle (each rank holds the whole "
+                "state); depth, each rank draws the spheres it owns and rank 0 composites them "
+                "by depth, then draws shadows' receivers, ambient occlusion and overlay once: "
+                "the same pixels. auto: gather (measured on 2 ranks of a 2-core machine, depth "
+                "won where most particles are drawn, a gas from 100k, and for a 1M fluid at "
+                "640x360, and lost for a fluid at 1280x720 up to 1M; a particle count cannot "
+                "tell them apart; docs/mpi.md, \"Rendering over ranks\"). depth "
+                "needs render.style spheres with impostors and width x 4 samples within the "
+                "GL's texture size.",
+         .choices = auto_choice_names<MpiComposite>()},
         {.path = "cull_buried",
          .field = &S::cull_buried,
          .doc = "3D only (a 2D scene refuses it): skip particles buried under two full layers "

@@ -153,20 +153,32 @@ Image FrameRenderer::render(const Snapshot& frame) {
     p.scenery.set_lighting(lighting);
     parts.mark(FramePart::shadow_map);
 
-    // The backdrop; the fluid and colour bar share the colour map.
-    p.target.begin();
-    p.overlay.backdrop().draw();
-    gl::bind_colour_map(p.colour_map);
-    parts.mark(FramePart::backdrop);
-    // The floor, then the fluid, depth-tested with itself and with the
-    // solids; their creases darkened.
-    p.scenery.draw_floor(camera);
-    parts.mark(FramePart::floor);
+    // The backdrop and the floor, then the fluid, depth-tested with itself
+    // and with the solids; their creases darkened.
+    draw_behind_fluid(camera, parts);
     if (p.surface)
         p.surface->draw(camera);
     else
         p.spheres.draw(p.batch, camera);
     parts.mark(FramePart::fluid);
+    return draw_after_fluid(camera, frame, start, parts);
+}
+
+void FrameRenderer::draw_behind_fluid(const Camera& camera, PartClock& parts) {
+    Parts& p = *parts_;
+    // The backdrop; the fluid and colour bar share the colour map.
+    p.target.begin();
+    p.overlay.backdrop().draw();
+    gl::bind_colour_map(p.colour_map);
+    parts.mark(FramePart::backdrop);
+    p.scenery.draw_floor(camera);
+    parts.mark(FramePart::floor);
+}
+
+Image FrameRenderer::draw_after_fluid(const Camera& camera, const Snapshot& frame,
+                                      std::chrono::steady_clock::time_point start,
+                                      PartClock& parts) {
+    Parts& p = *parts_;
     p.scenery.draw_solids(camera);
     parts.mark(FramePart::solids);
     p.light.occlude(p.target, camera);
@@ -227,12 +239,7 @@ Image FrameRenderer::render_composited(const Snapshot& frame) {
         return Image(0, 0);
     }
     // Rank 0: the backdrop and the floor, then every rank's spheres.
-    p.target.begin();
-    p.overlay.backdrop().draw();
-    gl::bind_colour_map(p.colour_map);
-    parts.mark(FramePart::backdrop);
-    p.scenery.draw_floor(camera);
-    parts.mark(FramePart::floor);
+    draw_behind_fluid(camera, parts);
     p.layers.assign(std::size_t(ranks_->ranks()), FlatLayer{});
     p.layers[0] = p.layer->flat();
     const std::size_t samples = std::size_t(settings_.width) * std::size_t(settings_.height) *
@@ -246,12 +253,7 @@ Image FrameRenderer::render_composited(const Snapshot& frame) {
     gl::bind_colour_map(p.colour_map);
     composite_seconds_ = seconds_since(composite_start);
     parts.mark(FramePart::fluid);
-    p.scenery.draw_solids(camera);
-    parts.mark(FramePart::solids);
-    p.light.occlude(p.target, camera);
-    parts.mark(FramePart::occlusion);
-    return finish_frame(p.scenery, p.overlay, p.painter, p.target, camera, frame, p.layout, start,
-                        timings_, parts);
+    return draw_after_fluid(camera, frame, start, parts);
 }
 
 } // namespace sph

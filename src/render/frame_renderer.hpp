@@ -14,6 +14,7 @@
 #include "sph/snapshot.hpp"
 
 #include <array>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -85,6 +86,12 @@ class FrameRenderer {
 
   private:
     Image render_composited(const Snapshot& frame);
+    // The parts both ways of drawing a frame share: the backdrop and the
+    // floor before the fluid; the solids, their creases, the glass, the
+    // lines and the overlay after it, and the pixels read back.
+    void draw_behind_fluid(const Camera& camera, PartClock& parts);
+    Image draw_after_fluid(const Camera& camera, const Snapshot& frame,
+                           std::chrono::steady_clock::time_point start, PartClock& parts);
 
     struct Parts;
     RenderSettings settings_;

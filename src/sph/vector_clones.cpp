@@ -11,6 +11,8 @@ const char* vector_clone_variant() {
     if (__builtin_cpu_supports("x86-64-v3"))
         return "x86-64-v3";
     return "baseline";
+#elif defined(SPHCLIP_VECTOR_CLONES)
+    return "baseline"; // a portable build by a compiler without the clones (clang)
 #else
     return "native";
 #endif

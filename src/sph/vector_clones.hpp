@@ -31,7 +31,8 @@ namespace sph {
 
 // The instruction set the cloned passes run on this processor, as their
 // resolvers choose it: "x86-64-v4" (AVX-512), "x86-64-v3" (AVX2, FMA),
-// "baseline" (the build's -march), or "native" (a build without clones).
+// "baseline" (the build's -march, also a portable build by clang, which
+// gets no clones), or "native" (a build for its own processor).
 const char* vector_clone_variant();
 
 } // namespace sph

@@ -478,7 +478,7 @@ class ClipRun {
         std::string run_json_note;
         try {
             run_json_note = record_.finish(status_name(end.status), written_, sim_.steps(),
-                                           sim_.time(), seconds, sim_.state().size(), end.error);
+                                           sim_.time(), seconds, sim_.particle_count(), end.error);
         } catch (const std::exception& e) {
             if (!out_of_space)
                 throw;

@@ -3,6 +3,7 @@
 #include "parallel/world.hpp"
 #include "scene/input_error.hpp"
 #include "sph/effects/surface_tension.hpp"
+#include "sph/neighbours/sorted_grid.hpp"
 #include "sph/solvers/explicit_solver.hpp"
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <limits>
 #include <mpi.h>
+#include <numeric>
 #include <omp.h>
 #include <stdexcept>
 #include <vector>
@@ -22,62 +24,150 @@ namespace sph::parallel {
 namespace {
 
 // Coarse cells at most per particle for the halo's grid; a box sparser
-// than that (a far stray particle) puts every particle in the halo, which
+// than that (a far stray particle) keeps every candidate in the halo, which
 // is exact, only slower.
 constexpr std::size_t max_cells_per_particle = 64;
-// After each rank's results in the gather: its owned + halo count, its
-// solver seconds, the halo bytes it received and which of the solver's kept
-// arrays it filled (a bit each), so the balance and the traffic are measured
-// without another message.
-constexpr std::size_t trailer = 4;
-// Point-to-point tags: a rank's halo request (the particles it needs from
-// an owner), each exchange of their values in the step, and a sum in
-// particle order passed on to the next rank.
+// Point-to-point tags: the candidates for another rank's halo, a rank's
+// halo request (which of them it keeps), each exchange of their values in
+// the step, a sum in particle order passed on to the next rank, particles
+// moving to their new owner, and the spatial sort's questions and answers.
+constexpr int candidate_tag = 23;
 constexpr int request_tag = 24;
 constexpr int values_tag = 25;
 constexpr int sum_tag = 26;
+constexpr int migrate_tag = 27;
+constexpr int query_tag = 28;
+constexpr int answer_tag = 29;
 // Halo cells per reach along an axis: the halo is the owned particles' cells
 // grown by this many cells, so it holds particles up to (1 + 1 / 3) reach
 // away rather than 2 reaches with cells as large as the reach.
 constexpr int halo_subdivision = 3;
 
+// What each rank tells rank 0 after a step, for run.json.
+enum Figure : std::size_t {
+    owned_figure,
+    local_figure,     // owned + halo
+    seconds_figure,   // in the solver
+    halo_bytes_figure, // received for the halo: candidates, requests, values
+    migrated_figure,  // particles it sent to another owner since the last step
+    migration_bytes_figure,
+    most_visited_figure, // most ranks one of its particles has been owned by
+    figure_count
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <class T>
+MPI_Datatype mpi_type() {
+    if constexpr (std::is_same_v<T, double>)
+        return MPI_DOUBLE;
+    else
+        return MPI_UINT64_T;
+}
+
+int message_size(std::size_t count) {
+    if (count > std::size_t(std::numeric_limits<int>::max()))
+        throw std::length_error("MPI ranks: a message larger than MPI can count");
+    return int(count);
+}
+
+// One particle in a message: its place in the memory order, x, v, a, rho,
+// p, id, the ranks it has been owned by (two 32-bit halves, so every entry
+// is a double exactly), then the solver's kept arrays.
+template <int D>
+struct Record {
+    static constexpr std::size_t fixed = 1 + 3 * D + 5;
+    static std::size_t stride(std::size_t kept) { return fixed + kept; }
+};
+
 template <int D>
 class RankPartition final : public Partition<D>, public HaloExchange<D> {
   public:
-    RankPartition(int hops, bool whole_cells)
-        : hops_(hops), whole_cells_(whole_cells), rank_(rank()), ranks_(size()) {
+    RankPartition(int hops, bool whole_cells, Real rebalance_above)
+        : hops_(hops), whole_cells_(whole_cells), rebalance_above_(rebalance_above),
+          rank_(parallel::rank()), ranks_(size()) {
         const auto p = std::size_t(ranks_);
+        count_.assign(p, 0);
+        first_.assign(p + 1, 0);
         need_.assign(p, 0);
         need_first_.assign(p, 0);
         give_.assign(p, 0);
         give_first_.assign(p + 1, 0);
-        first_.resize(std::size_t(ranks_) + 1);
-        counts_.resize(std::size_t(ranks_));
-        displacements_.resize(std::size_t(ranks_));
-        last_local_.assign(std::size_t(ranks_), 0);
-        last_owned_.assign(std::size_t(ranks_), 0);
+        last_local_.assign(p, 0);
+        last_owned_.assign(p, 0);
+        seconds_.assign(p, 0);
+    }
+
+    // ---- Collective ----------------------------------------------------
+    bool any(bool mine) override {
+        int in = mine ? 1 : 0, out = 0;
+        MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+        return out != 0;
+    }
+    void max(std::span<Real> values) override {
+        MPI_Allreduce(MPI_IN_PLACE, values.data(), message_size(values.size()), MPI_DOUBLE,
+                      MPI_MAX, MPI_COMM_WORLD);
+    }
+    int lowest(int key) override {
+        struct {
+            int key, rank;
+        } in{key, rank_}, out{};
+        MPI_Allreduce(&in, &out, 1, MPI_2INT, MPI_MINLOC, MPI_COMM_WORLD);
+        return out.rank;
+    }
+    void broadcast(std::span<std::byte> bytes, int from) override {
+        MPI_Bcast(bytes.data(), message_size(bytes.size()), MPI_BYTE, from, MPI_COMM_WORLD);
+    }
+    int rank() const override { return rank_; }
+    std::size_t total_particles() const override { return first_[std::size_t(ranks_)]; }
+    bool holds_end() const override { return rank_ + 1 == ranks_; }
+    void appended(std::size_t count) override {
+        count_[std::size_t(ranks_) - 1] += count;
+        first_[std::size_t(ranks_)] += count;
+        if (holds_end())
+            visited_.resize(visited_.size() + count, own_bit());
+        // New particles have no kept values yet: as in one process, the
+        // solver's kept arrays no longer cover every particle.
+        kept_mask_ = 0;
+    }
+
+    // ---- Partition ------------------------------------------------------
+    void adopt(State<D>& state) override {
+        cut_evenly(state.size());
+        const std::size_t begin = first_[std::size_t(rank_)], m = count_[std::size_t(rank_)];
+        State<D> share;
+        share.resize(m);
+        for (std::size_t i = 0; i < m; ++i)
+            copy_particle(state, begin + i, share, i);
+        state = std::move(share);
+        visited_.assign(m, own_bit());
+        kept_owned_.clear();
+        kept_mask_ = 0;
     }
 
     StepReport step(Solver<D>& solver, const Params<D>& params, Real dt, State<D>& state,
                     StepContext<D>& context) override {
-        const std::size_t n = state.size();
-        cut(n);
-        // The accelerations a Verlet step reuses are the whole state's: as
-        // current as on one rank, whatever subset this step holds. When they
-        // are not (the first step, new particles), the step computes them
-        // before it drifts by them: nothing bounds that drift beforehand, so
-        // this step holds every particle.
+        const std::size_t n = total_particles();
+        // The accelerations a Verlet step reuses are as current as on one
+        // process. When they are not (the first step, new particles), the
+        // step computes them before it drifts by them: nothing bounds that
+        // drift beforehand, so every rank's halo holds every particle.
         const bool current = stepped_ && n == stepped_size_;
+        const std::span<std::vector<Real>* const> kept = solver.kept_arrays();
+        if (kept_owned_.size() != kept.size()) {
+            kept_owned_.assign(kept.size(), {});
+            kept_mask_ = 0;
+        }
         {
             auto timed = context.time(Stage::rank_halo);
-            select_local(params, dt, state, params.integrator == Integrator::verlet && !current);
+            gather_halo(params, dt, state, kept,
+                        params.integrator == Integrator::verlet && !current);
             plan_halo();
-            copy_local(state);
         }
         if (auto* explicit_solver = dynamic_cast<ExplicitSolver<D>*>(&solver))
             explicit_solver->set_accelerations_current(current, local_.size());
-        const std::span<std::vector<Real>* const> kept = solver.kept_arrays();
-        localise_kept(kept);
         const auto start = std::chrono::steady_clock::now();
         // A rank that owns nothing (fewer particles than ranks) steps an
         // empty state: it holds no halo, so no rank exchanges with it, but
@@ -85,14 +175,10 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         context.halo = this;
         StepReport report = solver.step(params, dt, local_, context);
         context.halo = nullptr;
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds = seconds_since(start);
         stepped_ = true;
         stepped_size_ = n;
-        {
-            auto timed = context.time(Stage::rank_gather);
-            share_results(state, seconds, kept);
-        }
+        keep_results(state, kept, seconds);
         // Each rank's pushes, halo included: a particle near a rank's edge is
         // pushed on every rank that holds it (docs/mpi.md).
         std::uint64_t pushes = 0;
@@ -101,6 +187,179 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         return report;
     }
 
+    // The spatial sort over all ranks. One process sorts its particles by
+    // cell key, stably (SortedGrid::cell_order): particle i goes to the
+    // number of particles whose key is smaller, or equal and before i. Each
+    // rank keys its own on the whole fluid's grid and sorts them; a
+    // particle's new place is then its place among its rank's, plus, from
+    // each other rank s, the count of s's particles before it: those with a
+    // smaller key, or an equal one when s comes first. A rank whose keys lie
+    // all below (above) a particle's adds all (none) of its own; for the
+    // others the rank asks s, with its keys in s's span. The ranges are
+    // then cut by count and each particle sent to the owner of its place.
+    void reorder(State<D>& state, Real h) override {
+        const std::size_t m = state.size();
+        const auto p = std::size_t(ranks_);
+        // The whole fluid's box of finite positions, as one process finds it.
+        std::array<Real, 2 * D> box;
+        box.fill(std::numeric_limits<Real>::lowest());
+        for (std::size_t i = 0; i < m; ++i)
+            for (int a = 0; a < D; ++a) {
+                const Real v = state.position[i][a];
+                if (std::abs(v) <= std::numeric_limits<Real>::max()) {
+                    box[std::size_t(a)] = std::max(box[std::size_t(a)], -v);
+                    box[std::size_t(D + a)] = std::max(box[std::size_t(D + a)], v);
+                }
+            }
+        max(std::span<Real>(box));
+        Vec<D> lo, hi;
+        for (int a = 0; a < D; ++a) {
+            lo[a] = -box[std::size_t(a)];
+            hi[a] = box[std::size_t(D + a)];
+        }
+        const std::span<const std::uint64_t> cell_keys =
+            sorter_.cell_keys(state.position, h, lo, hi);
+        order_.resize(m);
+        std::iota(order_.begin(), order_.end(), 0u);
+        std::stable_sort(order_.begin(), order_.end(), [&](std::uint32_t x, std::uint32_t y) {
+            return cell_keys[x] < cell_keys[y];
+        });
+        sorted_keys_.resize(m);
+        for (std::size_t j = 0; j < m; ++j)
+            sorted_keys_[j] = cell_keys[order_[j]];
+        // Each rank's smallest and largest key and its count.
+        std::array<std::uint64_t, 3> mine{m ? sorted_keys_.front() : 0, m ? sorted_keys_.back() : 0,
+                                          m};
+        spans_.resize(3 * p);
+        MPI_Allgather(mine.data(), 3, MPI_UINT64_T, spans_.data(), 3, MPI_UINT64_T,
+                      MPI_COMM_WORLD);
+        auto low = [&](std::size_t s) { return spans_[3 * s]; };
+        auto high = [&](std::size_t s) { return spans_[3 * s + 1]; };
+        auto count = [&](std::size_t s) { return spans_[3 * s + 2]; };
+        // Questions: this rank's distinct keys within each other rank's span.
+        std::vector<std::uint64_t> questions;
+        std::vector<std::size_t> question_count(p, 0);
+        for (std::size_t s = 0; s < p; ++s) {
+            if (s == std::size_t(rank_) || count(s) == 0)
+                continue;
+            auto from = std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), low(s));
+            auto to = std::upper_bound(sorted_keys_.begin(), sorted_keys_.end(), high(s));
+            for (auto k = from; k != to; ++k)
+                if (k == from || *k != *(k - 1)) {
+                    questions.push_back(*k);
+                    ++question_count[s];
+                }
+        }
+        std::vector<std::uint64_t> asked;
+        std::vector<std::size_t> asked_count(p, 0);
+        all_to_all(questions, question_count, asked, asked_count, query_tag);
+        // Answers: for a rank before this one, how many of this rank's keys
+        // are smaller than each; for one after, smaller or equal.
+        std::vector<std::uint64_t> answers(asked.size());
+        for (std::size_t r = 0, at = 0; r < p; ++r)
+            for (std::size_t k = 0; k < asked_count[r]; ++k, ++at) {
+                const auto bound =
+                    r < std::size_t(rank_)
+                        ? std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), asked[at])
+                        : std::upper_bound(sorted_keys_.begin(), sorted_keys_.end(), asked[at]);
+                answers[at] = std::uint64_t(bound - sorted_keys_.begin());
+            }
+        std::vector<std::uint64_t> told;
+        std::vector<std::size_t> told_count(p, 0);
+        all_to_all(answers, asked_count, told, told_count, answer_tag);
+        // New places, in this rank's sorted order first.
+        places_.assign(m, 0);
+        for (std::size_t j = 0; j < m; ++j)
+            places_[j] = j;
+        for (std::size_t s = 0, at = 0; s < p; ++s) {
+            if (s == std::size_t(rank_) || count(s) == 0)
+                continue;
+            const std::size_t from = std::size_t(
+                std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), low(s)) -
+                sorted_keys_.begin());
+            const std::size_t to = std::size_t(
+                std::upper_bound(sorted_keys_.begin(), sorted_keys_.end(), high(s)) -
+                sorted_keys_.begin());
+            std::size_t answer = at;
+            for (std::size_t j = from; j < to; ++j) {
+                if (j > from && sorted_keys_[j] != sorted_keys_[j - 1])
+                    ++answer;
+                places_[j] += told[answer];
+            }
+            for (std::size_t j = to; j < m; ++j)
+                places_[j] += count(s);
+            at += question_count[s];
+        }
+        // places_ by sorted position -> by memory position.
+        sorted_places_.resize(m);
+        for (std::size_t j = 0; j < m; ++j)
+            sorted_places_[order_[j]] = places_[j];
+        std::vector<std::size_t> even = even_cut(total_particles());
+        migrate(state, sorted_places_, even);
+    }
+
+    void rebalance(State<D>& state) override {
+        const std::size_t n = total_particles();
+        const std::size_t most = *std::max_element(count_.begin(), count_.end());
+        if (n == 0 || Real(most) * Real(ranks_) <= rebalance_above_ * Real(n))
+            return;
+        const std::size_t begin = first_[std::size_t(rank_)];
+        sorted_places_.resize(state.size());
+        for (std::size_t i = 0; i < state.size(); ++i)
+            sorted_places_[i] = begin + i;
+        migrate(state, sorted_places_, even_cut(n));
+        ++rebalances_;
+    }
+
+    void gather(const State<D>& share, State<D>& whole) override {
+        constexpr std::size_t stride = 3 * D + 3;
+        const std::size_t m = share.size(), n = total_particles();
+        send_.resize(m * stride);
+        for (std::size_t i = 0; i < m; ++i) {
+            Real* out = send_.data() + i * stride;
+            for (int a = 0; a < D; ++a) {
+                out[a] = share.position[i][a];
+                out[D + a] = share.velocity[i][a];
+                out[2 * D + a] = share.acceleration[i][a];
+            }
+            out[3 * D] = share.density[i];
+            out[3 * D + 1] = share.pressure[i];
+            out[3 * D + 2] = double(share.id[i]);
+        }
+        const auto p = std::size_t(ranks_);
+        std::vector<int> counts(p), displacements(p);
+        for (std::size_t r = 0; r < std::size_t(ranks_); ++r) {
+            counts[r] = message_size(count_[r] * stride);
+            displacements[r] = message_size(first_[r] * stride);
+        }
+        receive_.resize(n * stride);
+        MPI_Allgatherv(send_.data(), message_size(send_.size()), MPI_DOUBLE, receive_.data(),
+                       counts.data(), displacements.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+        whole.resize(n);
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            const Real* in = receive_.data() + i * stride;
+            for (int a = 0; a < D; ++a) {
+                whole.position[i][a] = in[a];
+                whole.velocity[i][a] = in[D + a];
+                whole.acceleration[i][a] = in[2 * D + a];
+            }
+            whole.density[i] = in[3 * D];
+            whole.pressure[i] = in[3 * D + 1];
+            whole.id[i] = static_cast<std::uint32_t>(in[3 * D + 2]);
+        }
+        frame_gather_bytes_ += double((n - m) * stride * sizeof(Real));
+        ++frames_;
+    }
+
+    void take_share(const State<D>& whole, State<D>& share) const override {
+        const std::size_t begin = first_[std::size_t(rank_)];
+        share.resize(count_[std::size_t(rank_)]);
+        for (std::size_t i = 0; i < share.size(); ++i)
+            copy_particle(whole, begin + i, share, i);
+    }
+
+    // ---- HaloExchange (the solver, mid-step) -----------------------------
     // The halo's densities and pressures from their owners, point to point
     // (non-blocking): each rank sends its owned particles that another
     // rank's halo holds, as that rank asked in plan_halo().
@@ -143,7 +402,6 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
 
     std::size_t owned_begin() const override { return owned_offset_; }
     std::size_t owned_end() const override { return owned_offset_ + owned_in_local_; }
-    std::size_t total_particles() const override { return first_[std::size_t(ranks_)]; }
 
     // A sum in particle order: the ranges follow the memory order, so rank
     // r continues the sum of ranks 0 .. r - 1 and passes it on; the last
@@ -167,16 +425,20 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
 
     nlohmann::json report() const override {
         const double steps = std::max<double>(double(steps_), 1);
+        const double halo_per_step = halo_bytes_ / steps / ranks_;
+        const double migration_per_step = migration_bytes_ / steps / ranks_;
+        const double gather_per_step = frame_gather_bytes_ / steps;
         return {
             {"ranks", ranks_},
             {"threads_per_rank", omp_get_max_threads()},
             {"decomposition",
-             "contiguous ranges of the sorted grid's cell order (Morton curve), cut by particle "
-             "count every step; whole state on every rank; each rank steps its own particles and "
-             "a halo, whose densities its owners send point to point mid-step; owned results "
-             "all-gathered"},
+             "contiguous ranges of the sorted grid's cell order (Morton curve); each rank holds "
+             "its own particles only, cut again by count at every spatial sort and when "
+             "uneven; a step's halo comes from the ranks around (candidates by box, kept by "
+             "cell), its densities from their owners mid-step; particles migrate to their new "
+             "owner; the whole state is gathered at frame times only"},
             {"halo_support_radii", hops_},
-            {"halo_bytes_received_per_step", halo_bytes_ / steps / ranks_},
+            {"halo_bytes_received_per_step", halo_per_step},
             // dfsph: its iterations' exchanges and sums in particle order
             // (rank 0's time in them, waiting included).
             {"solve_exchange_seconds", solve_exchange_seconds_},
@@ -190,99 +452,194 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
               {"seconds_mean", time_imbalance_sum_ / steps},
               {"seconds_max", time_imbalance_max_}}},
             {"halo_particles_per_step", double(halo_sum_) / steps},
-            {"gather_bytes_received_per_step", double(received_bytes_) / steps},
-            {"bytes_received_per_step",
-             halo_bytes_ / steps / ranks_ + double(received_bytes_) / steps},
-            {"gather_bytes_received", received_bytes_},
-            {"migration_bytes_per_step", 0},
+            // The frames' gather of the whole state (rank 0's bytes),
+            // spread over the steps.
+            {"gather_bytes_received_per_step", gather_per_step},
+            {"frame_gathers", frames_},
+            {"frame_gather_bytes_received", frame_gather_bytes_},
+            {"bytes_received_per_step", halo_per_step + migration_per_step + gather_per_step},
+            {"migration_bytes_per_step", migration_per_step},
             {"migrations", migrations_},
+            {"rebalances", rebalances_},
             {"most_ranks_visited", most_visited_},
             {"steps_with_an_empty_rank", steps_with_empty_rank_},
         };
     }
 
-    // The whole state's kept arrays follow the reorder as the solver's own
-    // do in one process.
-    void permute(std::span<const std::uint32_t> order) override {
-        for (std::vector<Real>& whole : kept_whole_)
-            if (whole.size() == order.size())
-                sph::permute(whole, order, permute_scratch_);
-    }
-
   private:
-    // Per particle in the gather: x, v, a, rho, p, then the solver's kept arrays.
-    static constexpr std::size_t state_stride = 3 * D + 2;
-
-    static double seconds_since(std::chrono::steady_clock::time_point start) {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::uint64_t own_bit() const {
+        return rank_ < 64 ? std::uint64_t(1) << rank_ : 0;
     }
 
-    // Values of the owned particles that other ranks' halos hold, `width`
-    // a particle: pack(k, out) writes local particle k's, unpack(j, in)
-    // stores halo particle j's from its owner.
-    template <class Pack, class Unpack>
-    void exchange(std::size_t width, Pack pack, Unpack unpack) {
+    static void copy_particle(const State<D>& from, std::size_t i, State<D>& to, std::size_t k) {
+        to.position[k] = from.position[i];
+        to.velocity[k] = from.velocity[i];
+        to.acceleration[k] = from.acceleration[i];
+        to.density[k] = from.density[i];
+        to.pressure[k] = from.pressure[i];
+        to.id[k] = from.id[i];
+    }
+
+    // Rank r owns [n r / P, n (r + 1) / P).
+    std::vector<std::size_t> even_cut(std::size_t n) const {
+        std::vector<std::size_t> first(std::size_t(ranks_) + 1);
+        for (int r = 0; r <= ranks_; ++r)
+            first[std::size_t(r)] =
+                std::size_t(std::uint64_t(n) * std::uint64_t(r) / std::uint64_t(ranks_));
+        return first;
+    }
+    void set_cut(std::vector<std::size_t> first) {
+        first_ = std::move(first);
+        for (std::size_t r = 0; r < std::size_t(ranks_); ++r)
+            count_[r] = first_[r + 1] - first_[r];
+    }
+    void cut_evenly(std::size_t n) { set_cut(even_cut(n)); }
+
+    // Each rank sends `send` (grouped by destination rank, send_count[r]
+    // entries for rank r, none to itself) and receives into `receive`
+    // (grouped by source rank): the counts first (MPI_Alltoall), then the
+    // entries point to point, non-blocking.
+    template <class T>
+    void all_to_all(const std::vector<T>& send, const std::vector<std::size_t>& send_count,
+                    std::vector<T>& receive, std::vector<std::size_t>& receive_count, int tag) {
         const auto p = std::size_t(ranks_);
-        give_values_.resize(width * give_index_.size());
-        for (std::size_t k = 0; k < give_index_.size(); ++k)
-            pack(give_index_[k], give_values_.data() + width * k);
-        need_values_.resize(width * (local_.size() - owned_in_local_));
+        static_assert(sizeof(std::size_t) == sizeof(std::uint64_t));
+        MPI_Alltoall(send_count.data(), 1, MPI_UINT64_T, receive_count.data(), 1, MPI_UINT64_T,
+                     MPI_COMM_WORLD);
+        receive_count[std::size_t(rank_)] = 0;
+        std::size_t total = 0;
+        for (const std::size_t c : receive_count)
+            total += c;
+        receive.resize(total);
         requests_.clear();
         std::size_t at = 0;
         for (std::size_t s = 0; s < p; ++s) {
-            if (need_[s] == 0)
+            if (receive_count[s] == 0)
                 continue;
             requests_.emplace_back();
-            MPI_Irecv(need_values_.data() + at, int(width * std::size_t(need_[s])), MPI_DOUBLE,
-                      int(s), values_tag, MPI_COMM_WORLD, &requests_.back());
-            at += width * std::size_t(need_[s]);
+            MPI_Irecv(receive.data() + at, message_size(receive_count[s]), mpi_type<T>(), int(s),
+                      tag, MPI_COMM_WORLD, &requests_.back());
+            at += receive_count[s];
         }
+        at = 0;
         for (std::size_t r = 0; r < p; ++r) {
-            if (give_[r] == 0)
-                continue;
-            requests_.emplace_back();
-            MPI_Isend(give_values_.data() + width * give_first_[r],
-                      int(width * std::size_t(give_[r])), MPI_DOUBLE, int(r), values_tag,
-                      MPI_COMM_WORLD, &requests_.back());
+            if (send_count[r] > 0 && r != std::size_t(rank_)) {
+                requests_.emplace_back();
+                MPI_Isend(send.data() + at, message_size(send_count[r]), mpi_type<T>(), int(r),
+                          tag, MPI_COMM_WORLD, &requests_.back());
+            }
+            at += send_count[r];
         }
         MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
-        at = 0;
-        for (std::size_t s = 0; s < p; ++s)
-            for (int k = 0; k < need_[s]; ++k, at += width)
-                unpack(need_first_[s] + std::size_t(k), need_values_.data() + at);
-        step_halo_bytes_ += double(at * sizeof(Real));
     }
 
-    // The solver's kept arrays for the particles this step holds, from the
-    // whole state's; empty where the whole state has none (the first step,
-    // new particles), as the solver's own would be in one process.
-    void localise_kept(std::span<std::vector<Real>* const> kept) {
-        kept_whole_.resize(kept.size());
-        for (std::size_t a = 0; a < kept.size(); ++a) {
-            std::vector<Real>& local = *kept[a];
-            const std::vector<Real>& whole = kept_whole_[a];
-            if (whole.size() != first_[std::size_t(ranks_)]) {
-                local.clear();
-                continue;
-            }
-            local.resize(local_index_.size());
-            for (std::size_t k = 0; k < local_index_.size(); ++k)
-                local[k] = whole[local_index_[k]];
+    // Writes particle i of `state` (with its kept values and the ranks it
+    // has been owned by) as a record placed at `place`.
+    void pack(const State<D>& state, std::size_t i, std::uint64_t place, std::uint64_t visited,
+              Real* out) const {
+        out[0] = double(place);
+        for (int a = 0; a < D; ++a) {
+            out[1 + a] = state.position[i][a];
+            out[1 + D + a] = state.velocity[i][a];
+            out[1 + 2 * D + a] = state.acceleration[i][a];
         }
+        out[1 + 3 * D] = state.density[i];
+        out[2 + 3 * D] = state.pressure[i];
+        out[3 + 3 * D] = double(state.id[i]);
+        out[4 + 3 * D] = double(visited & 0xffffffffu);
+        out[5 + 3 * D] = double(visited >> 32);
+        for (std::size_t a = 0; a < kept_owned_.size(); ++a)
+            out[Record<D>::fixed + a] = kept_mask_ >> a & 1 ? kept_owned_[a][i] : 0;
+    }
+    static void unpack(const Real* in, State<D>& state, std::size_t k) {
+        for (int a = 0; a < D; ++a) {
+            state.position[k][a] = in[1 + a];
+            state.velocity[k][a] = in[1 + D + a];
+            state.acceleration[k][a] = in[1 + 2 * D + a];
+        }
+        state.density[k] = in[1 + 3 * D];
+        state.pressure[k] = in[2 + 3 * D];
+        state.id[k] = static_cast<std::uint32_t>(in[3 + 3 * D]);
+    }
+    static std::uint64_t visited_of(const Real* in) {
+        return std::uint64_t(in[4 + 3 * D]) | std::uint64_t(in[5 + 3 * D]) << 32;
     }
 
-    // Rank r owns [first_[r], first_[r + 1]).
-    void cut(std::size_t n) {
-        for (int r = 0; r <= ranks_; ++r)
-            first_[std::size_t(r)] =
-                std::size_t(std::uint64_t(n) * std::uint64_t(r) / std::uint64_t(ranks_));
+    // Each owned particle to the rank that owns `place[i]` under the cut
+    // `first`, at place[i] - first[rank] there; the kept arrays and the
+    // ranks each has been owned by travel with it.
+    void migrate(State<D>& state, std::span<const std::uint64_t> place,
+                 std::vector<std::size_t> first) {
+        const auto p = std::size_t(ranks_);
+        const std::size_t m = state.size(), kept = kept_owned_.size();
+        const std::size_t stride = Record<D>::stride(kept);
+        destination_.resize(m);
+        std::vector<std::size_t> send_count(p, 0);
+        for (std::size_t i = 0; i < m; ++i) {
+            const auto r = std::size_t(std::upper_bound(first.begin(), first.end(), place[i]) -
+                                       first.begin()) -
+                           1;
+            destination_[i] = static_cast<std::uint32_t>(r);
+            send_count[r] += stride;
+        }
+        std::vector<std::size_t> at(p + 1, 0);
+        for (std::size_t r = 0; r < p; ++r)
+            at[r + 1] = at[r] + send_count[r];
+        send_.resize(at[p]);
+        for (std::size_t i = 0; i < m; ++i) {
+            const std::size_t r = destination_[i];
+            pack(state, i, place[i], visited_[i], send_.data() + at[r]);
+            at[r] += stride;
+        }
+        std::vector<std::size_t> receive_count(p, 0);
+        all_to_all(send_, send_count, receive_, receive_count, migrate_tag);
+        // The new share: what stays, then what came.
+        const auto me = std::size_t(rank_);
+        const std::size_t begin = first[me], owned = first[me + 1] - first[me];
+        State<D> next;
+        next.resize(owned);
+        std::vector<std::vector<Real>> next_kept(kept);
+        for (std::size_t a = 0; a < kept; ++a)
+            if (kept_mask_ >> a & 1)
+                next_kept[a].resize(owned);
+        std::vector<std::uint64_t> next_visited(owned, 0);
+        auto place_record = [&](const Real* in, bool moved) {
+            const std::size_t k = std::size_t(in[0]) - begin;
+            unpack(in, next, k);
+            for (std::size_t a = 0; a < kept; ++a)
+                if (kept_mask_ >> a & 1)
+                    next_kept[a][k] = in[Record<D>::fixed + a];
+            next_visited[k] = visited_of(in) | own_bit();
+            if (moved)
+                most_visited_here_ = std::max(most_visited_here_, std::popcount(next_visited[k]));
+        };
+        const std::size_t stay_from = at[me] - send_count[me];
+        for (std::size_t k = 0; k < send_count[me]; k += stride)
+            place_record(send_.data() + stay_from + k, false);
+        for (std::size_t k = 0; k < receive_.size(); k += stride)
+            place_record(receive_.data() + k, true);
+        std::size_t moved = 0;
+        for (std::size_t r = 0; r < p; ++r)
+            if (r != me)
+                moved += send_count[r] / stride;
+        migrated_ += moved;
+        migration_bytes_here_ += double(receive_.size() * sizeof(Real));
+        state = std::move(next);
+        kept_owned_ = std::move(next_kept);
+        visited_ = std::move(next_visited);
+        set_cut(std::move(first));
     }
 
-    // local_index_: the owned particles and those within the halo's reach
-    // of one, by ascending memory position (so the owned ones are one run).
-    void select_local(const Params<D>& params, Real dt, const State<D>& state, bool everyone) {
-        const std::size_t n = state.size();
-        const std::size_t begin = first_[std::size_t(rank_)], end = first_[std::size_t(rank_) + 1];
+    // The step's particles (local_): the owned ones and, from the other
+    // ranks, those within the halo's reach of one, in the memory order of
+    // the whole simulation (local_index_: their places in it). Each rank
+    // sends every rank the owned particles inside its box grown by the
+    // reach (candidates); each keeps those in cells near its own particles.
+    void gather_halo(const Params<D>& params, Real dt, const State<D>& state,
+                     std::span<std::vector<Real>* const> kept, bool everyone) {
+        const auto p = std::size_t(ranks_);
+        const auto me = std::size_t(rank_);
+        const std::size_t m = state.size();
         // How far a Verlet step moves a particle before its forces (half-kick,
         // then drift) widens every link of the chain, at both ends. The other
         // steps (symplectic Euler; dfsph, whose redone halves are steps of
@@ -290,12 +647,13 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         // start and move them only at their end: no allowance.
         Real move = 0;
         if (params.integrator == Integrator::verlet) {
-            Real v2_max = 0, a2_max = 0;
-            for (std::size_t i = 0; i < n; ++i) {
-                v2_max = std::max(v2_max, squared_length<D>(state.velocity[i]));
-                a2_max = std::max(a2_max, squared_length<D>(state.acceleration[i]));
+            std::array<Real, 2> rates{0, 0};
+            for (std::size_t i = 0; i < m; ++i) {
+                rates[0] = std::max(rates[0], squared_length<D>(state.velocity[i]));
+                rates[1] = std::max(rates[1], squared_length<D>(state.acceleration[i]));
             }
-            move = dt * std::sqrt(v2_max) + dt * dt * std::sqrt(a2_max);
+            max(std::span<Real>(rates));
+            move = dt * std::sqrt(rates[0]) + dt * dt * std::sqrt(rates[1]);
         }
         // The float passes (solver.precision single) sum over every particle
         // of the 3^D cells around a particle's cell, a lane per candidate:
@@ -303,67 +661,166 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         // cells within `hops` cells of an owned one's, so one cell further.
         const Real reach =
             Real(hops_ + (whole_cells_ ? 1 : 0)) * (params.h * (1 + 1e-5) + 2 * move) * (1 + 1e-6);
-        local_index_.clear();
-        if (begin == end)
-            return; // owns nothing: steps nothing, needs no halo
-        // The grid covers the owned particles and `reach` around them (a
-        // particle outside it is farther than that from every owned one),
-        // not the whole fluid: with 2 ranks about half the cells.
+        everyone = everyone || !(reach > 0) || !std::isfinite(reach);
+        // This rank's box: its owned finite positions.
         Vec<D> lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
-        for (std::size_t i = begin; i < end; ++i) {
+        for (std::size_t i = 0; i < m; ++i) {
             const Vec<D>& x = state.position[i];
-            bool finite = true;
-            for (int a = 0; a < D; ++a)
-                finite = finite && std::isfinite(x[a]);
-            if (!finite)
-                continue;
-            lo = glm::min(lo, x);
-            hi = glm::max(hi, x);
-        }
-        const Real cell_size = reach / halo_subdivision;
-        lo -= Vec<D>(reach + cell_size);
-        hi += Vec<D>(reach + cell_size);
-        std::size_t cells = 1;
-        std::array<std::size_t, D> dims{};
-        everyone = everyone || !(reach > 0) || !std::isfinite(reach) || !(lo[0] <= hi[0]);
-        for (int a = 0; a < D && !everyone; ++a) {
-            const Real extent = (hi[a] - lo[a]) / cell_size;
-            everyone = !(extent < Real(max_cells_per_particle * (n + 64)));
-            if (!everyone) {
-                dims[a] = std::size_t(extent) + 1;
-                cells *= dims[a];
-                everyone = cells > max_cells_per_particle * (n + 64);
+            if (finite(x)) {
+                lo = glm::min(lo, x);
+                hi = glm::max(hi, x);
             }
         }
-        if (everyone) {
-            for (std::size_t i = 0; i < n; ++i)
-                local_index_.push_back(static_cast<std::uint32_t>(i));
-            return;
+        const Real cell_size = reach / halo_subdivision;
+        const Real margin = reach + cell_size;
+        std::array<Real, 2 * D> mine;
+        for (int a = 0; a < D; ++a) {
+            mine[std::size_t(a)] = lo[a] - margin;
+            mine[std::size_t(D + a)] = hi[a] + margin;
         }
-        // The cell holding x, false outside the grid.
-        const Real per_cell = 1 / cell_size; // h (1 + 1e-5) in `reach` covers its rounding
+        boxes_.resize(2 * D * p);
+        MPI_Allgather(mine.data(), 2 * D, MPI_DOUBLE, boxes_.data(), 2 * D, MPI_DOUBLE,
+                      MPI_COMM_WORLD);
+        auto inside = [&](std::size_t s, const Vec<D>& x) {
+            const Real* box = boxes_.data() + 2 * D * s;
+            for (int a = 0; a < D; ++a)
+                if (!(x[a] >= box[a] && x[a] <= box[D + a]))
+                    return false;
+            return true;
+        };
+        // Candidates for each other rank that owns particles, in memory order.
+        const std::size_t stride = Record<D>::stride(kept_owned_.size());
+        std::vector<std::size_t> send_count(p, 0);
+        for (std::size_t s = 0; s < p; ++s) {
+            if (s == me || count_[s] == 0)
+                continue;
+            for (std::size_t i = 0; i < m; ++i)
+                if (everyone || inside(s, state.position[i]))
+                    send_count[s] += stride;
+        }
+        std::size_t total = 0;
+        for (const std::size_t c : send_count)
+            total += c;
+        send_.resize(total);
+        for (std::size_t s = 0, at = 0; s < p; ++s) {
+            if (s == me || count_[s] == 0)
+                continue;
+            for (std::size_t i = 0; i < m; ++i)
+                if (everyone || inside(s, state.position[i])) {
+                    pack(state, i, first_[me] + i, 0, send_.data() + at);
+                    at += stride;
+                }
+        }
+        std::vector<std::size_t> receive_count(p, 0);
+        all_to_all(send_, send_count, receive_, receive_count, candidate_tag);
+        step_halo_bytes_ = double(receive_.size() * sizeof(Real));
+        // Which candidates to keep: those in a cell within the reach of an
+        // owned particle's (all when every particle is in the halo).
+        const std::size_t candidates = receive_.size() / stride;
+        keep_.assign(candidates, everyone ? 1 : 0);
+        if (!everyone && m > 0 && candidates > 0)
+            mark_near(lo - Vec<D>(margin), hi + Vec<D>(margin), cell_size, state, stride);
+        // local_: candidates from the ranks before this one, the owned
+        // particles, then candidates from the ranks after it.
+        std::size_t halo = 0;
+        for (const std::uint8_t k : keep_)
+            halo += k;
+        const std::size_t n_local = halo + m;
+        local_.resize(n_local);
+        local_index_.resize(n_local);
+        for (std::size_t a = 0; a < kept.size(); ++a) {
+            if (kept_mask_ >> a & 1)
+                kept[a]->resize(n_local);
+            else
+                kept[a]->clear();
+        }
+        std::fill(need_.begin(), need_.end(), 0);
+        std::size_t k = 0, c = 0, record = 0;
+        auto take_candidates_from = [&](std::size_t s) {
+            for (std::size_t e = 0; e < receive_count[s]; e += stride, ++c) {
+                const Real* in = receive_.data() + (record + e);
+                if (!keep_[c])
+                    continue;
+                if (need_[s]++ == 0)
+                    need_first_[s] = k;
+                unpack(in, local_, k);
+                local_index_[k] = static_cast<std::uint32_t>(in[0]);
+                for (std::size_t a = 0; a < kept.size(); ++a)
+                    if (kept_mask_ >> a & 1)
+                        (*kept[a])[k] = in[Record<D>::fixed + a];
+                ++k;
+            }
+            record += receive_count[s];
+        };
+        for (std::size_t s = 0; s < me; ++s)
+            take_candidates_from(s);
+        owned_offset_ = k;
+        owned_in_local_ = m;
+        for (std::size_t i = 0; i < m; ++i, ++k) {
+            copy_particle(state, i, local_, k);
+            local_index_[k] = static_cast<std::uint32_t>(first_[me] + i);
+            for (std::size_t a = 0; a < kept.size(); ++a)
+                if (kept_mask_ >> a & 1)
+                    (*kept[a])[k] = kept_owned_[a][i];
+        }
+        for (std::size_t s = me + 1; s < p; ++s)
+            take_candidates_from(s);
+    }
+
+    static bool finite(const Vec<D>& x) {
+        for (int a = 0; a < D; ++a)
+            if (!std::isfinite(x[a]))
+                return false;
+        return true;
+    }
+
+    // keep_[c] = 1 for each received candidate in a cell of the grid over
+    // [lo, hi] that lies within halo_subdivision cells of an owned
+    // particle's cell: a particle within the reach of an owned one is in
+    // such a cell. A grid too large for the particles keeps them all.
+    void mark_near(const Vec<D>& lo, const Vec<D>& hi, Real cell_size, const State<D>& state,
+                   std::size_t stride) {
+        const std::size_t n = state.size() + keep_.size();
+        if (!(lo[0] <= hi[0]))
+            return; // no finite owned particle: nothing is near
+        std::size_t cells = 1;
+        std::array<std::size_t, D> dims{};
+        for (int a = 0; a < D; ++a) {
+            const Real extent = (hi[a] - lo[a]) / cell_size;
+            if (!(extent < Real(max_cells_per_particle * (n + 64)))) {
+                std::fill(keep_.begin(), keep_.end(), 1);
+                return;
+            }
+            dims[std::size_t(a)] = std::size_t(extent) + 1;
+            cells *= dims[std::size_t(a)];
+            if (cells > max_cells_per_particle * (n + 64)) {
+                std::fill(keep_.begin(), keep_.end(), 1);
+                return;
+            }
+        }
+        const Real per_cell = 1 / cell_size; // h (1 + 1e-5) in the reach covers its rounding
         auto cell_of = [&](const Vec<D>& x, std::size_t& cell) {
             cell = 0;
             for (int a = D - 1; a >= 0; --a) {
                 const Real u = (x[a] - lo[a]) * per_cell;
-                if (!(u >= 0 && u < Real(dims[a])))
+                if (!(u >= 0 && u < Real(dims[std::size_t(a)])))
                     return false;
-                cell = cell * dims[a] + std::size_t(u);
+                cell = cell * dims[std::size_t(a)] + std::size_t(u);
             }
             return true;
         };
-        // Cells of an owned particle, then grown by halo_subdivision cells
-        // along each axis in turn: a particle within `reach` of an owned one
-        // is in a marked cell.
         near_.assign(cells, 0);
-        for (std::size_t i = begin; i < end; ++i)
+        for (std::size_t i = 0; i < state.size(); ++i)
             if (std::size_t c; cell_of(state.position[i], c))
                 near_[c] = 1;
         grow_cells(dims, halo_subdivision);
-        for (std::size_t i = 0; i < n; ++i) {
-            std::size_t c = 0;
-            if ((i >= begin && i < end) || (cell_of(state.position[i], c) && near_[c]))
-                local_index_.push_back(static_cast<std::uint32_t>(i));
+        for (std::size_t c = 0; c < keep_.size(); ++c) {
+            const Real* in = receive_.data() + c * stride;
+            Vec<D> x;
+            for (int a = 0; a < D; ++a)
+                x[a] = in[1 + a];
+            std::size_t cell = 0;
+            keep_[c] = cell_of(x, cell) && near_[cell];
         }
     }
 
@@ -407,29 +864,12 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     }
 
     // Which owner sends each halo particle's densities (need_, need_first_:
-    // the halo's runs in local_index_, one per owner, the ranges being
-    // contiguous), and which owned particles this rank sends to each rank
-    // (give_index_, as positions in local_): each rank tells each owner the
-    // particles it needs, by global index.
+    // the halo's runs in local_, one per owner), and which owned particles
+    // this rank sends to each rank (give_index_, as positions in local_):
+    // each rank tells each owner which of its candidates it kept, by place.
     void plan_halo() {
         const auto p = std::size_t(ranks_);
         const std::size_t begin = first_[std::size_t(rank_)];
-        owned_in_local_ = 0;
-        owned_offset_ = 0;
-        std::fill(need_.begin(), need_.end(), 0);
-        std::size_t owner = 0;
-        for (std::size_t k = 0; k < local_index_.size(); ++k) {
-            const std::size_t i = local_index_[k];
-            while (i >= first_[owner + 1])
-                ++owner;
-            if (owner == std::size_t(rank_)) {
-                if (owned_in_local_++ == 0)
-                    owned_offset_ = k;
-                continue;
-            }
-            if (need_[owner]++ == 0)
-                need_first_[owner] = k;
-        }
         MPI_Alltoall(need_.data(), 1, MPI_INT, give_.data(), 1, MPI_INT, MPI_COMM_WORLD);
         for (std::size_t r = 0; r < p; ++r)
             give_first_[r + 1] = give_first_[r] + std::size_t(give_[r]);
@@ -450,180 +890,148 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
                       request_tag, MPI_COMM_WORLD, &requests_.back());
         }
         MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
-        // Global index to position in local_: the owned particles are one run.
+        // Place in the memory order to position in local_.
         for (auto& i : give_index_)
             i = static_cast<std::uint32_t>(owned_offset_ + (i - begin));
         std::size_t needed = 0;
         for (const int count : need_)
             needed += std::size_t(count);
-        step_halo_bytes_ = double(needed * sizeof(std::uint32_t));
+        step_halo_bytes_ += double(needed * sizeof(std::uint32_t));
     }
 
-    void copy_local(const State<D>& state) {
-        const std::size_t m = local_index_.size();
-        local_.resize(m);
-        const std::uint32_t* index = local_index_.data();
-#pragma omp parallel for schedule(static)
-        for (std::size_t k = 0; k < m; ++k) {
-            const std::uint32_t i = index[k];
-            local_.position[k] = state.position[i];
-            local_.velocity[k] = state.velocity[i];
-            local_.acceleration[k] = state.acceleration[i];
-            local_.density[k] = state.density[i];
-            local_.pressure[k] = state.pressure[i];
-            local_.id[k] = state.id[i];
+    // Values of the owned particles that other ranks' halos hold, `width`
+    // a particle: pack(k, out) writes local particle k's, unpack(j, in)
+    // stores halo particle j's from its owner.
+    template <class Pack, class Unpack>
+    void exchange(std::size_t width, Pack pack_value, Unpack unpack_value) {
+        const auto p = std::size_t(ranks_);
+        give_values_.resize(width * give_index_.size());
+        for (std::size_t k = 0; k < give_index_.size(); ++k)
+            pack_value(give_index_[k], give_values_.data() + width * k);
+        need_values_.resize(width * (local_.size() - owned_in_local_));
+        requests_.clear();
+        std::size_t at = 0;
+        for (std::size_t s = 0; s < p; ++s) {
+            if (need_[s] == 0)
+                continue;
+            requests_.emplace_back();
+            MPI_Irecv(need_values_.data() + at, int(width * std::size_t(need_[s])), MPI_DOUBLE,
+                      int(s), values_tag, MPI_COMM_WORLD, &requests_.back());
+            at += width * std::size_t(need_[s]);
         }
+        for (std::size_t r = 0; r < p; ++r) {
+            if (give_[r] == 0)
+                continue;
+            requests_.emplace_back();
+            MPI_Isend(give_values_.data() + width * give_first_[r],
+                      int(width * std::size_t(give_[r])), MPI_DOUBLE, int(r), values_tag,
+                      MPI_COMM_WORLD, &requests_.back());
+        }
+        MPI_Waitall(int(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+        at = 0;
+        for (std::size_t s = 0; s < p; ++s)
+            for (int k = 0; k < need_[s]; ++k, at += width)
+                unpack_value(need_first_[s] + std::size_t(k), need_values_.data() + at);
+        step_halo_bytes_ += double(at * sizeof(Real));
     }
 
-    // The owned particles' new state, and the solver's kept arrays, from
-    // every rank, into `state` and kept_whole_.
-    void share_results(State<D>& state, double seconds, std::span<std::vector<Real>* const> kept) {
-        const std::size_t n = state.size();
-        const std::size_t begin = first_[std::size_t(rank_)], end = first_[std::size_t(rank_) + 1];
-        const std::size_t owned = end - begin;
-        stride_ = state_stride + kept.size();
-        const std::size_t stride = stride_;
-        // The kept arrays the step filled (sized to what it held).
+    // The owned particles' new state back into `state`, and the solver's
+    // kept arrays into kept_owned_ (kept only where every rank's step
+    // filled them, as one process keeps them only when they cover every
+    // particle); the step's figures to rank 0.
+    void keep_results(State<D>& state, std::span<std::vector<Real>* const> kept,
+                      double seconds) {
+        const std::size_t m = state.size();
+        for (std::size_t i = 0; i < m; ++i) {
+            const std::size_t k = owned_offset_ + i;
+            state.position[i] = local_.position[k];
+            state.velocity[i] = local_.velocity[k];
+            state.acceleration[i] = local_.acceleration[k];
+            state.density[i] = local_.density[k];
+            state.pressure[i] = local_.pressure[k];
+        }
         std::uint32_t filled = 0;
         for (std::size_t a = 0; a < kept.size(); ++a)
             if (kept[a]->size() == local_.size())
                 filled |= std::uint32_t(1) << a;
-        if ((n * stride + std::size_t(ranks_) * trailer) >
-            std::size_t(std::numeric_limits<int>::max()))
-            throw std::length_error("MPI ranks: more particles than one gather can count");
-        // Where the owned run starts among this rank's particles.
-        const std::size_t offset = std::size_t(
-            std::lower_bound(local_index_.begin(), local_index_.end(), std::uint32_t(begin)) -
-            local_index_.begin());
-        send_.resize(owned * stride + trailer);
-#pragma omp parallel for schedule(static)
-        for (std::size_t k = 0; k < owned; ++k) {
-            Real* out = send_.data() + k * stride;
-            const std::size_t j = offset + k;
-            for (int a = 0; a < D; ++a) {
-                out[a] = local_.position[j][a];
-                out[D + a] = local_.velocity[j][a];
-                out[2 * D + a] = local_.acceleration[j][a];
-            }
-            out[3 * D] = local_.density[j];
-            out[3 * D + 1] = local_.pressure[j];
-            for (std::size_t a = 0; a < kept.size(); ++a)
-                out[state_stride + a] = filled >> a & 1 ? (*kept[a])[j] : 0;
-        }
-        send_[owned * stride] = double(local_.size());
-        send_[owned * stride + 1] = seconds;
-        send_[owned * stride + 2] = step_halo_bytes_;
-        send_[owned * stride + 3] = double(filled);
-        for (int r = 0; r < ranks_; ++r) {
-            const std::size_t count =
-                (first_[std::size_t(r) + 1] - first_[std::size_t(r)]) * stride + trailer;
-            counts_[std::size_t(r)] = int(count);
-            displacements_[std::size_t(r)] =
-                int(first_[std::size_t(r)] * stride + std::size_t(r) * trailer);
-        }
-        receive_.resize(n * stride + std::size_t(ranks_) * trailer);
-        MPI_Request request;
-        MPI_Iallgatherv(send_.data(), int(send_.size()), MPI_DOUBLE, receive_.data(),
-                        counts_.data(), displacements_.data(), MPI_DOUBLE, MPI_COMM_WORLD,
-                        &request);
-        MPI_Wait(&request, MPI_STATUS_IGNORE);
-        // A kept array is whole when every rank filled it.
-        std::uint32_t whole = ~std::uint32_t(0);
-        for (int r = 0; r < ranks_; ++r) {
-            const std::size_t count = first_[std::size_t(r) + 1] - first_[std::size_t(r)];
-            whole &= std::uint32_t(
-                receive_[std::size_t(displacements_[std::size_t(r)]) + count * stride + 3]);
-        }
+        MPI_Allreduce(MPI_IN_PLACE, &filled, 1, MPI_UINT32_T, MPI_BAND, MPI_COMM_WORLD);
+        kept_mask_ = filled;
         for (std::size_t a = 0; a < kept.size(); ++a) {
-            if (whole >> a & 1)
-                kept_whole_[a].resize(n);
+            if (kept_mask_ >> a & 1)
+                kept_owned_[a].assign(kept[a]->begin() + std::ptrdiff_t(owned_offset_),
+                                      kept[a]->begin() + std::ptrdiff_t(owned_offset_ + m));
             else
-                kept_whole_[a].clear();
+                kept_owned_[a].clear();
         }
-        for (int r = 0; r < ranks_; ++r) {
-            const std::size_t from = first_[std::size_t(r)], to = first_[std::size_t(r) + 1];
-            const Real* block = receive_.data() + displacements_[std::size_t(r)];
-#pragma omp parallel for schedule(static)
-            for (std::size_t i = from; i < to; ++i) {
-                const Real* in = block + (i - from) * stride;
-                for (int a = 0; a < D; ++a) {
-                    state.position[i][a] = in[a];
-                    state.velocity[i][a] = in[D + a];
-                    state.acceleration[i][a] = in[2 * D + a];
-                }
-                state.density[i] = in[3 * D];
-                state.pressure[i] = in[3 * D + 1];
-                for (std::size_t a = 0; a < kept.size(); ++a)
-                    if (whole >> a & 1)
-                        kept_whole_[a][i] = in[state_stride + a];
-            }
-            const Real* tail = block + (to - from) * stride;
-            last_owned_[std::size_t(r)] = to - from;
-            last_local_[std::size_t(r)] = std::uint64_t(tail[0]);
-            seconds_[std::size_t(r)] = tail[1];
-            halo_bytes_ += tail[2];
-        }
-        record_balance(n, owned);
+        std::array<double, figure_count> figures{};
+        figures[owned_figure] = double(m);
+        figures[local_figure] = double(local_.size());
+        figures[seconds_figure] = seconds;
+        figures[halo_bytes_figure] = step_halo_bytes_;
+        figures[migrated_figure] = double(migrated_);
+        figures[migration_bytes_figure] = migration_bytes_here_;
+        figures[most_visited_figure] = double(most_visited_here_);
+        migrated_ = 0;
+        migration_bytes_here_ = 0;
+        gathered_figures_.resize(figure_count * std::size_t(ranks_));
+        MPI_Gather(figures.data(), int(figure_count), MPI_DOUBLE, gathered_figures_.data(),
+                   int(figure_count), MPI_DOUBLE, 0, MPI_COMM_WORLD);
         if (rank_ == 0)
-            record_owners(state);
+            record_step();
     }
 
-    // Which rank owns each particle now: the particles that changed rank
-    // since the last step (where the cut or a reorder moved them) and the
-    // ranks each has been owned by. Rank 0 reports them.
-    void record_owners(const State<D>& state) {
-        bool empty = false;
-        for (int r = 0; r < ranks_; ++r) {
-            empty = empty || first_[std::size_t(r) + 1] == first_[std::size_t(r)];
-            for (std::size_t i = first_[std::size_t(r)]; i < first_[std::size_t(r) + 1]; ++i) {
-                const std::uint32_t id = state.id[i];
-                if (id >= owner_.size()) {
-                    owner_.resize(std::size_t(id) + 1, -1);
-                    visited_.resize(std::size_t(id) + 1, 0);
-                }
-                if (owner_[id] >= 0 && owner_[id] != r)
-                    ++migrations_;
-                owner_[id] = static_cast<std::int16_t>(r);
-                if (r < 64) {
-                    visited_[id] |= std::uint64_t(1) << r;
-                    most_visited_ = std::max(most_visited_, std::popcount(visited_[id]));
-                }
-            }
-        }
-        steps_with_empty_rank_ += empty;
-    }
-
-    void record_balance(std::size_t n, std::size_t owned) {
+    // Rank 0: balance and traffic from every rank's figures.
+    void record_step() {
         ++steps_;
-        std::uint64_t local_total = 0, local_max = 0;
-        double seconds_total = 0, seconds_max = 0;
-        for (int r = 0; r < ranks_; ++r) {
-            local_total += last_local_[std::size_t(r)];
-            local_max = std::max(local_max, last_local_[std::size_t(r)]);
-            seconds_total += seconds_[std::size_t(r)];
-            seconds_max = std::max(seconds_max, seconds_[std::size_t(r)]);
+        const auto p = std::size_t(ranks_);
+        double local_total = 0, local_max = 0, seconds_total = 0, seconds_max = 0;
+        bool empty = false;
+        for (std::size_t r = 0; r < p; ++r) {
+            const double* f = gathered_figures_.data() + figure_count * r;
+            last_owned_[r] = std::uint64_t(f[owned_figure]);
+            last_local_[r] = std::uint64_t(f[local_figure]);
+            seconds_[r] = f[seconds_figure];
+            local_total += f[local_figure];
+            local_max = std::max(local_max, f[local_figure]);
+            seconds_total += f[seconds_figure];
+            seconds_max = std::max(seconds_max, f[seconds_figure]);
+            halo_bytes_ += f[halo_bytes_figure];
+            migrations_ += std::uint64_t(f[migrated_figure]);
+            migration_bytes_ += f[migration_bytes_figure];
+            most_visited_ = std::max(most_visited_, int(f[most_visited_figure]));
+            halo_sum_ += std::uint64_t(f[local_figure] - f[owned_figure]);
+            empty = empty || f[owned_figure] == 0;
         }
-        const double work = local_total > 0 ? double(local_max) * ranks_ / double(local_total) : 1;
+        const double work = local_total > 0 ? local_max * ranks_ / local_total : 1;
         const double time = seconds_total > 0 ? seconds_max * ranks_ / seconds_total : 1;
         work_imbalance_sum_ += work;
         work_imbalance_max_ = std::max(work_imbalance_max_, work);
         time_imbalance_sum_ += time;
         time_imbalance_max_ = std::max(time_imbalance_max_, time);
-        halo_sum_ += local_.size() - owned;
-        received_bytes_ += (n - owned) * stride_ * sizeof(Real);
+        steps_with_empty_rank_ += empty;
     }
 
     const int hops_;
     const bool whole_cells_;
+    const Real rebalance_above_;
     const int rank_, ranks_;
-    std::vector<std::size_t> first_;
-    std::size_t stride_ = state_stride; // values a particle in the gather
+    // The cut: rank r owns places [first_[r], first_[r + 1]) of the memory
+    // order, count_[r] particles.
+    std::vector<std::size_t> count_, first_;
+    // Per owned particle: the solver's kept arrays (array a kept when bit a
+    // of kept_mask_ is set, the same on every rank) and the ranks it has
+    // been owned by (a bit each, the first 64 ranks).
+    std::vector<std::vector<Real>> kept_owned_;
+    std::uint32_t kept_mask_ = 0;
+    std::vector<std::uint64_t> visited_;
+    // The step's particles and their places in the memory order.
+    State<D> local_;
     std::vector<std::uint32_t> local_index_;
+    std::vector<Real> boxes_;
+    std::vector<std::uint8_t> keep_;
     std::vector<std::uint8_t> near_, grown_;
     std::vector<std::ptrdiff_t> last_marked_; // grow_cells: per line across a slab
-    State<D> local_;
     std::vector<Real> send_, receive_;
-    std::vector<int> counts_, displacements_;
     // The halo exchange (plan_halo, share_densities).
     std::vector<int> need_, give_;
     std::vector<std::size_t> need_first_, give_first_;
@@ -631,26 +1039,30 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     std::vector<Real> give_values_, need_values_;
     std::vector<MPI_Request> requests_;
     std::size_t owned_offset_ = 0, owned_in_local_ = 0;
-    double step_halo_bytes_ = 0, halo_bytes_ = 0;
-    // The solver's kept arrays for the whole state (Solver::kept_arrays).
-    std::vector<std::vector<Real>> kept_whole_;
-    std::vector<Real> permute_scratch_;
+    double step_halo_bytes_ = 0;
+    // The spatial sort and migration.
+    SortedGrid<D> sorter_;
+    std::vector<std::uint32_t> order_, destination_;
+    std::vector<std::uint64_t> sorted_keys_, spans_, places_, sorted_places_;
+    std::uint64_t migrated_ = 0;
+    double migration_bytes_here_ = 0;
+    int most_visited_here_ = 1;
     // dfsph's exchanges and sums in each iteration.
     std::chrono::steady_clock::time_point sum_start_;
     double solve_exchange_seconds_ = 0;
     std::uint64_t sums_ = 0;
     bool stepped_ = false;
     std::size_t stepped_size_ = 0;
-    // Balance and traffic, for run.json.
+    // Balance and traffic, for run.json (rank 0).
+    std::vector<double> gathered_figures_;
     std::vector<std::uint64_t> last_local_, last_owned_;
-    std::vector<double> seconds_ = std::vector<double>(std::size_t(ranks_), 0.0);
-    std::uint64_t steps_ = 0, halo_sum_ = 0, received_bytes_ = 0;
+    std::vector<double> seconds_;
+    std::uint64_t steps_ = 0, halo_sum_ = 0, frames_ = 0, rebalances_ = 0;
+    double halo_bytes_ = 0, migration_bytes_ = 0, frame_gather_bytes_ = 0;
     double work_imbalance_sum_ = 0, work_imbalance_max_ = 0;
     double time_imbalance_sum_ = 0, time_imbalance_max_ = 0;
-    std::vector<std::int16_t> owner_; // by particle id; -1: not seen yet
-    std::vector<std::uint64_t> visited_;
     std::uint64_t migrations_ = 0, steps_with_empty_rank_ = 0;
-    int most_visited_ = 0;
+    int most_visited_ = 1;
 };
 
 } // namespace
@@ -688,7 +1100,7 @@ std::unique_ptr<Partition<D>> make_rank_partition(const Params<D>& params,
     // a wall particle beside an owned one has up to a support radius further.
     if (params.wall_pressure == WallPressure::extrapolated)
         ++hops;
-    return std::make_unique<RankPartition<D>>(hops, single);
+    return std::make_unique<RankPartition<D>>(hops, single, params.rebalance_above);
 }
 
 template std::unique_ptr<Partition<2>>

@@ -70,6 +70,7 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                   scene.watchdog.max_displacement, derived.max_speed,
                   !scene.watchdog.max_speed.has_value()};
     p.reorder_every = scene.solver.reorder_every;
+    p.rebalance_above = scene.solver.rebalance_above;
     p.precision = derived.precision;
     // Each solver reads only its own way of carrying the density (as the
     // others ignore solver.artificial_viscosity), so one tank scene serves

@@ -96,6 +96,9 @@ struct Params {
     // Steps between spatial sorts of the particle arrays (by cell, along the
     // Morton curve), which keep neighbours near in memory; 0: never.
     int reorder_every = 0;
+    // Over MPI ranks: owned particles of the fullest rank / the mean above
+    // which the ranges are cut again (src/parallel/rank_partition.cpp).
+    Real rebalance_above = 1.1;
     Precision precision = Precision::double_precision;
     // Gravity that the walls' pressure adds across the fluid-wall distance
     // (WallPressure::hydrostatic); zero: the mirrored pressure.

@@ -1,10 +1,13 @@
 #pragma once
-// How one step is shared out when a simulation runs over several processes
-// (src/parallel/, docs/mpi.md). Simulation hands each step to its partition,
-// when it has one, instead of calling the solver itself; the partition runs
-// the solver on this process's share and leaves `state` as the whole step
-// would have left it. Nothing here knows about MPI.
+// How a simulation is shared out when it runs over several processes
+// (src/parallel/, docs/mpi.md). Each process holds a contiguous run of the
+// particles in memory order (rank 0 the first): Simulation's state is that
+// run, and Simulation hands each step, each spatial sort and each frame's
+// fields to its partition, when it has one, instead of doing them itself.
+// The results are the same bits as one process's. Nothing here knows about
+// MPI.
 
+#include "sph/collective.hpp"
 #include "sph/solvers/solver.hpp"
 
 #include <nlohmann/json.hpp>
@@ -12,16 +15,27 @@
 namespace sph {
 
 template <int D>
-class Partition {
+class Partition : public Collective {
   public:
-    virtual ~Partition() = default;
-    // solver.step(params, dt, state, context), shared out; the same bits in
-    // `state` as that call would give.
+    // `state`, the whole simulation's (the same on every process), becomes
+    // this process's share.
+    virtual void adopt(State<D>& state) = 0;
+    // solver.step(params, dt, state, context) on the whole simulation, each
+    // process stepping its share: `state` (the share) as that call would
+    // have left it.
     virtual StepReport step(Solver<D>& solver, const Params<D>& params, Real dt, State<D>& state,
                             StepContext<D>& context) = 0;
-    // The particle arrays were reordered between steps (State::permute
-    // with `order`): what the partition keeps per particle follows.
-    virtual void permute(std::span<const std::uint32_t> /*order*/) {}
+    // The spatial sort (SortedGrid::cell_order with radius h) of the whole
+    // simulation's particles, then the ranges cut again by count: particles
+    // move to the process that owns their new place.
+    virtual void reorder(State<D>& state, Real h) = 0;
+    // The ranges cut again by count when they have grown uneven (particles
+    // added; params.rebalance_above).
+    virtual void rebalance(State<D>& state) = 0;
+    // The whole simulation's state, on every process, from each one's share.
+    virtual void gather(const State<D>& share, State<D>& whole) = 0;
+    // This process's share of `whole` (updated alike on every process).
+    virtual void take_share(const State<D>& whole, State<D>& share) const = 0;
     // What run.json records: ranks, decomposition, balance, bytes moved.
     virtual nlohmann::json report() const = 0;
 };

@@ -47,6 +47,15 @@ void Simulation<D>::inspect_start() {
 }
 
 template <int D>
+void Simulation<D>::set_partition(std::unique_ptr<Partition<D>> partition) {
+    partition_ = std::move(partition);
+    if (!partition_)
+        return;
+    whole_ = state_;
+    partition_->adopt(state_);
+}
+
+template <int D>
 std::string Simulation<D>::start_cause() const {
     // 10% above rest density: no liquid starts so compressed on purpose.
     if (start_density_ratio_ <= 1.1)
@@ -64,6 +73,11 @@ Real Simulation<D>::next_dt() const {
         return params_.time_step.dt;
     StageTimes::Scope timed(&stages_, Stage::time_step);
     ExtremeRates rates = measure_rates(state_);
+    if (partition_) {
+        Real extremes[3] = {rates.max_speed, rates.max_acceleration, rates.max_density};
+        partition_->max(extremes);
+        rates = {extremes[0], extremes[1], extremes[2]};
+    }
     // What no particle shows yet: gravity before the first step, the speed
     // new particles enter with, the speed a paddle gives the fluid beside it.
     for (const auto& effect : effects_)
@@ -97,7 +111,7 @@ std::optional<StepProblem> Simulation<D>::try_steps(Real dt, int count) {
         counters_.divergence_iterations += report.divergence_iterations;
         counters_.obstacle_pushes += report.obstacle_pushes;
         StageTimes::Scope timed(&stages_, Stage::watchdog);
-        if (auto problem = inspect_step(params_, state_, dt))
+        if (auto problem = inspect_step(params_, state_, dt, partition_.get()))
             return problem;
     }
     return std::nullopt;
@@ -140,6 +154,10 @@ void Simulation<D>::reorder_particles() {
     if (!due)
         return;
     StageTimes::Scope timed(&stages_, Stage::reorder);
+    if (partition_) {
+        partition_->reorder(state_, params_.h);
+        return;
+    }
     // From the positions (and memory order) alone, never from the last
     // find's lists, so that frames and outputs cannot change the order.
     std::span<const std::uint32_t> order = search_->cell_order(state_.position, params_.h);
@@ -150,8 +168,6 @@ void Simulation<D>::reorder_particles() {
     }
     state_.permute(order, permute_scratch_);
     solver_->permute(order);
-    if (partition_)
-        partition_->permute(order);
     for (const auto& effect : effects_)
         effect->permute(order);
 }
@@ -160,7 +176,13 @@ template <int D>
 void Simulation<D>::emit_particles() {
     for (const auto& source : sources_) {
         StageTimes::Scope timed(&stages_, StageName::of(*source));
-        source->emit(params_, time_, state_);
+        source->emit(params_, time_, state_, partition_.get());
+    }
+    // Over processes the new particles went to the last: the ranges are
+    // cut again when they have grown uneven.
+    if (partition_ && !sources_.empty()) {
+        StageTimes::Scope timed(&stages_, Stage::reorder);
+        partition_->rebalance(state_);
     }
 }
 
@@ -191,15 +213,16 @@ void Simulation<D>::step_by(Real dt) {
         counters_ = counters_before;
         counters_.retries += std::uint64_t(retry) + 1;
     }
-    particle_steps_ += (steps_ - steps_before) * state_.size();
+    const std::size_t particles = particle_count();
+    particle_steps_ += (steps_ - steps_before) * particles;
     const std::uint64_t pressure =
                             counters_.pressure_iterations - counters_before.pressure_iterations,
                         divergence =
                             counters_.divergence_iterations - counters_before.divergence_iterations;
     solve_work_.pressure_iterations += pressure;
     solve_work_.divergence_iterations += divergence;
-    solve_work_.pressure += pressure * state_.size();
-    solve_work_.divergence += divergence * state_.size();
+    solve_work_.pressure += pressure * particles;
+    solve_work_.divergence += divergence * particles;
     time_ += dt;
 }
 
@@ -247,7 +270,18 @@ template <int D>
 void Simulation<D>::update_fields() {
     auto ctx = context();
     ctx.place_boundaries(time_);
-    solver_->update_fields(params_, state_, ctx);
+    if (!partition_) {
+        solver_->update_fields(params_, state_, ctx);
+        return;
+    }
+    // Over processes: the whole state on each, its fields as one process
+    // computes them, and this process's share of them kept for its steps.
+    {
+        StageTimes::Scope timed(&stages_, Stage::rank_gather);
+        partition_->gather(state_, whole_);
+    }
+    solver_->update_fields(params_, whole_, ctx);
+    partition_->take_share(whole_, state_);
 }
 
 template <int D>

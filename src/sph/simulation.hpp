@@ -55,14 +55,20 @@ class Simulation {
     // Counters since the last call, then reset.
     StepCounters take_counters();
     // Steps shared out over processes (sph/partition.hpp); null: all here.
-    void set_partition(std::unique_ptr<Partition<D>> partition) {
-        partition_ = std::move(partition);
-    }
+    // From then on this process holds its share of the particles between
+    // frames; state() is the whole state as of the last update_fields().
+    void set_partition(std::unique_ptr<Partition<D>> partition);
     const Partition<D>* partition() const { return partition_.get(); }
 
     const Params<D>& params() const { return params_; }
-    const State<D>& state() const { return state_; }
-    State<D>& state() { return state_; }
+    // The particles: all of them. Over processes (set_partition), the whole
+    // state gathered by the last update_fields(), the frames' fields.
+    const State<D>& state() const { return partition_ ? whole_ : state_; }
+    State<D>& state() { return partition_ ? whole_ : state_; }
+    // Particles now, over all processes.
+    std::size_t particle_count() const {
+        return partition_ ? partition_->total_particles() : state_.size();
+    }
     const Solver<D>& solver() const { return *solver_; }
     const NeighbourSearch<D>& search() const { return *search_; }
     // Neighbours as the last step or update_fields() found them.
@@ -117,7 +123,8 @@ class Simulation {
     std::optional<StepProblem> try_steps(Real dt, int count);
 
     Params<D> params_;
-    State<D> state_;
+    State<D> state_; // over processes, this one's share
+    State<D> whole_; // over processes, the whole state at the last update_fields()
     std::unique_ptr<Solver<D>> solver_;
     std::unique_ptr<NeighbourSearch<D>> search_;
     EffectList<D> effects_;

@@ -13,6 +13,7 @@
 // Simulation retries a step that fails them with the step halved (from a saved
 // state); only when the retries run out does it throw UnstableError.
 
+#include "sph/collective.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"
 
@@ -31,8 +32,11 @@ struct StepProblem {
     Real limit = 0; // the bound it broke; infinity for a non-finite value
 };
 
+// Over MPI ranks (`ranks` not null) `state` is this rank's particles: every
+// rank gets the same answer, the problem one process would have named.
 template <int D>
-std::optional<StepProblem> inspect_step(const Params<D>& params, const State<D>& state, Real dt);
+std::optional<StepProblem> inspect_step(const Params<D>& params, const State<D>& state, Real dt,
+                                        Collective* ranks = nullptr);
 
 // The run cannot go on: a step failed the watchdog even at its smallest retry.
 struct UnstableError : std::runtime_error {

@@ -285,6 +285,46 @@ typename SortedGrid<D>::Range SortedGrid<D>::cell_range(std::uint64_t key) const
 }
 
 template <int D>
+int SortedGrid<D>::set_up_grid(Vec<D> lo, Vec<D> hi, Real radius) {
+    std::array<std::uint32_t, D> bits;
+    int key_bits = 0;
+    for (int a = 0; a < D; ++a) {
+        if (lo[a] > hi[a])
+            lo[a] = hi[a] = 0; // no finite position
+        const Real extent = hi[a] - lo[a];
+        Real size = radius * cell_widening;
+        // Coarser cells along an axis wider than max_axis_cells: still exact
+        // (a pair is at most one cell apart), only more candidates.
+        if (!(extent / size < Real(max_axis_cells - 1)))
+            size = extent / Real(max_axis_cells - 1);
+        inverse_cell_size_[a] =
+            size > 0 && size < std::numeric_limits<Real>::infinity() ? 1 / size : 0;
+        const Real last = std::floor(extent * inverse_cell_size_[a]);
+        cell_count_[a] =
+            last < Real(max_axis_cells - 1) ? static_cast<std::uint32_t>(last) + 1 : max_axis_cells;
+        bits[a] = static_cast<std::uint32_t>(std::bit_width(cell_count_[a] - 1));
+        key_bits += static_cast<int>(bits[a]);
+    }
+    origin_ = lo;
+    set_up_morton(bits);
+    return key_bits;
+}
+
+template <int D>
+std::span<const std::uint64_t> SortedGrid<D>::cell_keys(std::span<const Vec<D>> positions,
+                                                        Real radius, const Vec<D>& lo,
+                                                        const Vec<D>& hi) {
+    set_up_grid(lo, hi, radius);
+    const std::size_t n = positions.size();
+    keys_.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+        keys_[i] = morton(cell_of(positions[i]));
+    // The next find or cell_order sets the grid up again from its positions.
+    return keys_;
+}
+
+template <int D>
 void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radius) {
     const std::size_t n = positions.size();
 
@@ -311,27 +351,7 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
         }
     }
 
-    std::array<std::uint32_t, D> bits;
-    int key_bits = 0;
-    for (int a = 0; a < D; ++a) {
-        if (lo[a] > hi[a])
-            lo[a] = hi[a] = 0; // no finite position
-        const Real extent = hi[a] - lo[a];
-        Real size = radius * cell_widening;
-        // Coarser cells along an axis wider than max_axis_cells: still exact
-        // (a pair is at most one cell apart), only more candidates.
-        if (!(extent / size < Real(max_axis_cells - 1)))
-            size = extent / Real(max_axis_cells - 1);
-        inverse_cell_size_[a] =
-            size > 0 && size < std::numeric_limits<Real>::infinity() ? 1 / size : 0;
-        const Real last = std::floor(extent * inverse_cell_size_[a]);
-        cell_count_[a] =
-            last < Real(max_axis_cells - 1) ? static_cast<std::uint32_t>(last) + 1 : max_axis_cells;
-        bits[a] = static_cast<std::uint32_t>(std::bit_width(cell_count_[a] - 1));
-        key_bits += static_cast<int>(bits[a]);
-    }
-    origin_ = lo;
-    set_up_morton(bits);
+    const int key_bits = set_up_grid(lo, hi, radius);
 
     keys_.resize(n);
     sorted_keys_.resize(n);

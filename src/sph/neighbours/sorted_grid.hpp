@@ -38,6 +38,14 @@ class SortedGrid final : public NeighbourSearch<D> {
     std::span<const std::uint32_t> cell_order(std::span<const Vec<D>> positions,
                                               Real radius) override;
 
+    // Each position's cell key (its cell's Morton code) on the grid that
+    // cell_order would lay over positions whose finite bounding box is
+    // [lo, hi]: cell_order sorts by these keys, stably. Over MPI ranks each
+    // rank keys its own particles on the whole fluid's grid
+    // (parallel/rank_partition.cpp).
+    std::span<const std::uint64_t> cell_keys(std::span<const Vec<D>> positions, Real radius,
+                                             const Vec<D>& lo, const Vec<D>& hi);
+
     // The occupied cells of the last find or cell_order, along the Morton
     // curve, for passes that work a cell at a time
     // (sph/neighbours/cell_neighbourhoods.hpp). A cell holds the particles
@@ -83,6 +91,9 @@ class SortedGrid final : public NeighbourSearch<D> {
     };
 
     void sort_into_cells(std::span<const Vec<D>> positions, Real radius);
+    // The cells over the box [lo, hi] (lo > hi along an axis: no finite
+    // position); returns the Morton key's bits.
+    int set_up_grid(Vec<D> lo, Vec<D> hi, Real radius);
     void set_up_morton(const std::array<std::uint32_t, D>& bits);
     Coord cell_of(const Vec<D>& x) const;
     std::uint64_t morton(const Coord& c) const;

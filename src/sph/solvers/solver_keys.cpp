@@ -115,6 +115,14 @@ const KeyTable<SolverSettings>& solver_keys() {
                 "which keep neighbours near in memory; 0: never. Changes round-off only.",
          .min = 0,
          .max = 1000000},
+        {.path = "rebalance_above",
+         .field = &S::rebalance_above,
+         .doc = "Over MPI ranks: between steps, the ranks' ranges of the cell order are cut "
+                "again by particle count when the rank owning the most holds more than this "
+                "times the mean (besides at every spatial sort); particles then move between "
+                "ranks. Changes nothing in the results.",
+         .min = 1,
+         .max = 1000},
         {.path = "precision",
          .field = auto_enum_field<&S::precision>(),
          .doc = "Arithmetic of wcsph's density and pressure passes: single (float, a grid cell "

@@ -32,6 +32,7 @@ struct SolverSettings {
     NeighbourSearchKind neighbour_search = NeighbourSearchKind::sorted_grid;
     // Steps between spatial sorts of the particle arrays by cell; 0: never.
     int reorder_every = 20;
+    double rebalance_above = 1.1;
     // The arithmetic of wcsph's density and pressure passes
     // (sph/single_precision/cell_passes.hpp); none: auto.
     std::optional<Precision> precision;

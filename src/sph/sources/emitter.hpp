@@ -43,7 +43,7 @@ class Emitter final : public Source<D> {
     std::string_view name() const override { return "emitters"; }
     std::size_t bytes() const override { return sites_.capacity() * sizeof(Vec<D>); }
 
-    void emit(const Params<D>&, Real time, State<D>& state) override {
+    void emit(const Params<D>&, Real time, State<D>& state, Collective* ranks) override {
         if (time >= start_ && time < end_ + interval_)
             drive_inlet_zone(state);
         // Batches due by `time` (a little slack for rounding of t).
@@ -51,11 +51,20 @@ class Emitter final : public Source<D> {
             const Real due = start_ + Real(emitted_) * interval_;
             if (due > time + 1e-12 * interval_ || due >= end_)
                 return;
-            if (flooded(state)) {
+            const bool flooded_here = flooded(state);
+            if (ranks ? ranks->any(flooded_here) : flooded_here) {
                 blocked_ += time - due;
                 start_ += time - due;
                 return;
             }
+            ++emitted_;
+            // Ids are 0 .. n-1 over all particles; over ranks the batch goes
+            // where the memory order ends, and every rank counts it.
+            const std::size_t first_id = ranks ? ranks->total_particles() : state.size();
+            if (ranks)
+                ranks->appended(sites_.size());
+            if (ranks && !ranks->holds_end())
+                continue;
             const std::size_t first = state.size();
             state.resize(first + sites_.size());
             for (std::size_t k = 0; k < sites_.size(); ++k) {
@@ -65,9 +74,8 @@ class Emitter final : public Source<D> {
                 state.acceleration[i] = Vec<D>(0);
                 state.density[i] = 0;
                 state.pressure[i] = 0;
-                state.id[i] = static_cast<std::uint32_t>(i); // ids are 0 .. n-1
+                state.id[i] = static_cast<std::uint32_t>(first_id + k);
             }
-            ++emitted_;
         }
     }
 

@@ -5,6 +5,7 @@
 // holds a list built once from the scene: a source the scene does not name is
 // not in it.
 
+#include "sph/collective.hpp"
 #include "sph/params.hpp"
 #include "sph/state.hpp"
 
@@ -23,8 +24,11 @@ class Source {
     virtual std::string_view name() const = 0;
     // Adds the particles due by `time`, when a step starts there. New
     // particles get the next ids, and every array of the state grows with
-    // them (State::resize).
-    virtual void emit(const Params<D>& params, Real time, State<D>& state) = 0;
+    // them (State::resize). Over MPI ranks (`ranks` not null) `state` holds
+    // this rank's particles: what depends on all of them is asked of
+    // `ranks`, and new particles go to the rank that holds the end.
+    virtual void emit(const Params<D>& params, Real time, State<D>& state,
+                      Collective* ranks = nullptr) = 0;
     // The speed it gives the particles it makes (m/s), known before any
     // step, for the time step's first estimate.
     virtual Real speed() const = 0;

@@ -46,10 +46,10 @@ constexpr int halo_subdivision = 3;
 // What each rank tells rank 0 after a step, for run.json.
 enum Figure : std::size_t {
     owned_figure,
-    local_figure,     // owned + halo
-    seconds_figure,   // in the solver
+    local_figure,      // owned + halo
+    seconds_figure,    // in the solver
     halo_bytes_figure, // received for the halo: candidates, requests, values
-    migrated_figure,  // particles it sent to another owner since the last step
+    migrated_figure,   // particles it sent to another owner since the last step
     migration_bytes_figure,
     most_visited_figure, // most ranks one of its particles has been owned by
     figure_count
@@ -107,8 +107,8 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         return out != 0;
     }
     void max(std::span<Real> values) override {
-        MPI_Allreduce(MPI_IN_PLACE, values.data(), message_size(values.size()), MPI_DOUBLE,
-                      MPI_MAX, MPI_COMM_WORLD);
+        MPI_Allreduce(MPI_IN_PLACE, values.data(), message_size(values.size()), MPI_DOUBLE, MPI_MAX,
+                      MPI_COMM_WORLD);
     }
     int lowest(int key) override {
         struct {
@@ -231,11 +231,16 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         std::array<std::uint64_t, 3> mine{m ? sorted_keys_.front() : 0, m ? sorted_keys_.back() : 0,
                                           m};
         spans_.resize(3 * p);
-        MPI_Allgather(mine.data(), 3, MPI_UINT64_T, spans_.data(), 3, MPI_UINT64_T,
-                      MPI_COMM_WORLD);
-        auto low = [&](std::size_t s) { return spans_[3 * s]; };
-        auto high = [&](std::size_t s) { return spans_[3 * s + 1]; };
-        auto count = [&](std::size_t s) { return spans_[3 * s + 2]; };
+        MPI_Allgather(mine.data(), 3, MPI_UINT64_T, spans_.data(), 3, MPI_UINT64_T, MPI_COMM_WORLD);
+        auto low = [&](std::size_t s) {
+            return spans_[3 * s];
+        };
+        auto high = [&](std::size_t s) {
+            return spans_[3 * s + 1];
+        };
+        auto count = [&](std::size_t s) {
+            return spans_[3 * s + 2];
+        };
         // Questions: this rank's distinct keys within each other rank's span.
         std::vector<std::uint64_t> questions;
         std::vector<std::size_t> question_count(p, 0);
@@ -274,12 +279,12 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         for (std::size_t s = 0, at = 0; s < p; ++s) {
             if (s == std::size_t(rank_) || count(s) == 0)
                 continue;
-            const std::size_t from = std::size_t(
-                std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), low(s)) -
-                sorted_keys_.begin());
-            const std::size_t to = std::size_t(
-                std::upper_bound(sorted_keys_.begin(), sorted_keys_.end(), high(s)) -
-                sorted_keys_.begin());
+            const std::size_t from =
+                std::size_t(std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), low(s)) -
+                            sorted_keys_.begin());
+            const std::size_t to =
+                std::size_t(std::upper_bound(sorted_keys_.begin(), sorted_keys_.end(), high(s)) -
+                            sorted_keys_.begin());
             std::size_t answer = at;
             for (std::size_t j = from; j < to; ++j) {
                 if (j > from && sorted_keys_[j] != sorted_keys_[j - 1])
@@ -400,8 +405,12 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         solve_exchange_seconds_ += seconds_since(start);
     }
 
-    std::size_t owned_begin() const override { return owned_offset_; }
-    std::size_t owned_end() const override { return owned_offset_ + owned_in_local_; }
+    std::size_t owned_begin() const override {
+        return owned_offset_;
+    }
+    std::size_t owned_end() const override {
+        return owned_offset_ + owned_in_local_;
+    }
 
     // A sum in particle order: the ranges follow the memory order, so rank
     // r continues the sum of ranks 0 .. r - 1 and passes it on; the last
@@ -493,7 +502,9 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         for (std::size_t r = 0; r < std::size_t(ranks_); ++r)
             count_[r] = first_[r + 1] - first_[r];
     }
-    void cut_evenly(std::size_t n) { set_cut(even_cut(n)); }
+    void cut_evenly(std::size_t n) {
+        set_cut(even_cut(n));
+    }
 
     // Each rank sends `send` (grouped by destination rank, send_count[r]
     // entries for rank r, none to itself) and receives into `receive`
@@ -525,8 +536,8 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         for (std::size_t r = 0; r < p; ++r) {
             if (send_count[r] > 0 && r != std::size_t(rank_)) {
                 requests_.emplace_back();
-                MPI_Isend(send.data() + at, message_size(send_count[r]), mpi_type<T>(), int(r),
-                          tag, MPI_COMM_WORLD, &requests_.back());
+                MPI_Isend(send.data() + at, message_size(send_count[r]), mpi_type<T>(), int(r), tag,
+                          MPI_COMM_WORLD, &requests_.back());
             }
             at += send_count[r];
         }
@@ -939,8 +950,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     // kept arrays into kept_owned_ (kept only where every rank's step
     // filled them, as one process keeps them only when they cover every
     // particle); the step's figures to rank 0.
-    void keep_results(State<D>& state, std::span<std::vector<Real>* const> kept,
-                      double seconds) {
+    void keep_results(State<D>& state, std::span<std::vector<Real>* const> kept, double seconds) {
         const std::size_t m = state.size();
         for (std::size_t i = 0; i < m; ++i) {
             const std::size_t k = owned_offset_ + i;

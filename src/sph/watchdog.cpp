@@ -49,9 +49,9 @@ namespace {
 // the check's place in that list; the maxima and the sum are the whole
 // simulation's (over ranks, every rank's).
 template <int D>
-std::optional<std::pair<int, StepProblem>>
-find_problem(const Params<D>& params, const State<D>& state, Real dt, Real sum, Real max_density,
-             Real max_speed2) {
+std::optional<std::pair<int, StepProblem>> find_problem(const Params<D>& params,
+                                                        const State<D>& state, Real dt, Real sum,
+                                                        Real max_density, Real max_speed2) {
     const std::size_t n = state.size();
     const Real density_limit = params.watchdog.max_density_ratio * params.rest_density;
     const Real speed_limit =
@@ -77,8 +77,8 @@ find_problem(const Params<D>& params, const State<D>& state, Real dt, Real sum, 
         for (std::size_t i = 0; i < n; ++i)
             for (int a = 0; a < D; ++a)
                 if (!std::isfinite((*field)[i][a]))
-                    return problem(check, i, fmt::format("{}.{}", name, axes[a]),
-                                   (*field)[i][a], infinite);
+                    return problem(check, i, fmt::format("{}.{}", name, axes[a]), (*field)[i][a],
+                                   infinite);
         ++check;
     }
     for (std::size_t i = 0; i < n; ++i) {
@@ -165,8 +165,8 @@ std::optional<StepProblem> inspect_step(const Params<D>& params, const State<D>&
 }
 
 template std::optional<StepProblem> inspect_step<2>(const Params<2>&, const State<2>&, Real,
-                                                   Collective*);
+                                                    Collective*);
 template std::optional<StepProblem> inspect_step<3>(const Params<3>&, const State<3>&, Real,
-                                                   Collective*);
+                                                    Collective*);
 
 } // namespace sph

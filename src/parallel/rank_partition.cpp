@@ -460,7 +460,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
               {"particles_max", work_imbalance_max_},
               {"seconds_mean", time_imbalance_sum_ / steps},
               {"seconds_max", time_imbalance_max_}}},
-            {"halo_particles_per_step", double(halo_sum_) / steps},
+            {"halo_particles_per_step", double(halo_sum_) / steps / ranks_},
             // The frames' gather of the whole state (rank 0's bytes),
             // spread over the steps.
             {"gather_bytes_received_per_step", gather_per_step},
@@ -689,42 +689,76 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             mine[std::size_t(a)] = lo[a] - margin;
             mine[std::size_t(D + a)] = hi[a] + margin;
         }
+        step_halo_bytes_ = 0;
         boxes_.resize(2 * D * p);
         MPI_Allgather(mine.data(), 2 * D, MPI_DOUBLE, boxes_.data(), 2 * D, MPI_DOUBLE,
                       MPI_COMM_WORLD);
-        auto inside = [&](std::size_t s, const Vec<D>& x) {
-            const Real* box = boxes_.data() + 2 * D * s;
+        // Which of this rank's particles another rank may need: those in a
+        // coarse cell (as wide as the margin) beside one of its particles'.
+        // Each rank sends its occupied coarse cells to the ranks whose boxes
+        // meet its own; the candidates it gets back lie within two cells of
+        // its particles, a few times the halo rather than the whole box.
+        const std::size_t stride = Record<D>::stride(kept_owned_.size());
+        std::vector<std::size_t> send_count(p, 0), receive_count(p, 0);
+        auto meets = [&](std::size_t s) {
+            const Real* theirs = boxes_.data() + 2 * D * s;
             for (int a = 0; a < D; ++a)
-                if (!(x[a] >= box[a] && x[a] <= box[D + a]))
+                if (!(mine[std::size_t(a)] <= theirs[D + a] &&
+                      theirs[a] <= mine[std::size_t(D + a)]))
                     return false;
             return true;
         };
-        // Candidates for each other rank that owns particles, in memory order.
-        const std::size_t stride = Record<D>::stride(kept_owned_.size());
-        std::vector<std::size_t> send_count(p, 0);
-        for (std::size_t s = 0; s < p; ++s) {
-            if (s == me || count_[s] == 0)
-                continue;
+        if (!everyone) {
+            cells_.clear();
             for (std::size_t i = 0; i < m; ++i)
-                if (everyone || inside(s, state.position[i]))
-                    send_count[s] += stride;
-        }
-        std::size_t total = 0;
-        for (const std::size_t c : send_count)
-            total += c;
-        send_.resize(total);
-        for (std::size_t s = 0, at = 0; s < p; ++s) {
-            if (s == me || count_[s] == 0)
-                continue;
-            for (std::size_t i = 0; i < m; ++i)
-                if (everyone || inside(s, state.position[i])) {
-                    pack(state, i, first_[me] + i, 0, send_.data() + at);
-                    at += stride;
+                if (finite(state.position[i]))
+                    cells_.push_back(coarse_key(coarse_cell(state.position[i], margin)));
+            std::sort(cells_.begin(), cells_.end());
+            cells_.erase(std::unique(cells_.begin(), cells_.end()), cells_.end());
+            std::vector<std::size_t> list_count(p, 0);
+            std::vector<std::uint64_t> lists;
+            for (std::size_t s = 0; s < p; ++s)
+                if (s != me && m > 0 && count_[s] > 0 && meets(s)) {
+                    list_count[s] = cells_.size();
+                    lists.insert(lists.end(), cells_.begin(), cells_.end());
                 }
+            all_to_all(lists, list_count, their_cells_, receive_count, candidate_tag);
+            step_halo_bytes_ = double(their_cells_.size() * sizeof(std::uint64_t));
         }
-        std::vector<std::size_t> receive_count(p, 0);
+        // Candidates for each rank, in memory order: every particle when
+        // every one is in the halo, else those beside the rank's cells.
+        std::size_t total = 0;
+        candidate_index_.clear();
+        for (std::size_t s = 0, list = 0; s < p; ++s) {
+            const std::size_t first_candidate = candidate_index_.size();
+            if (everyone) {
+                if (s != me && count_[s] > 0)
+                    for (std::size_t i = 0; i < m; ++i)
+                        candidate_index_.push_back(static_cast<std::uint32_t>(i));
+            } else if (receive_count[s] > 0) {
+                // The cells beside (or at) one of rank s's.
+                beside_.clear();
+                for (std::size_t k = 0; k < receive_count[s]; ++k)
+                    add_neighbourhood(their_cells_[list + k], beside_);
+                list += receive_count[s];
+                std::sort(beside_.begin(), beside_.end());
+                beside_.erase(std::unique(beside_.begin(), beside_.end()), beside_.end());
+                for (std::size_t i = 0; i < m; ++i)
+                    if (finite(state.position[i]) &&
+                        std::binary_search(beside_.begin(), beside_.end(),
+                                           coarse_key(coarse_cell(state.position[i], margin))))
+                        candidate_index_.push_back(static_cast<std::uint32_t>(i));
+            }
+            send_count[s] = (candidate_index_.size() - first_candidate) * stride;
+            total += send_count[s];
+        }
+        send_.resize(total);
+        for (std::size_t k = 0; k < candidate_index_.size(); ++k) {
+            const std::size_t i = candidate_index_[k];
+            pack(state, i, first_[me] + i, 0, send_.data() + k * stride);
+        }
         all_to_all(send_, send_count, receive_, receive_count, candidate_tag);
-        step_halo_bytes_ = double(receive_.size() * sizeof(Real));
+        step_halo_bytes_ += double(receive_.size() * sizeof(Real));
         // Which candidates to keep: those in a cell within the reach of an
         // owned particle's (all when every particle is in the halo).
         const std::size_t candidates = receive_.size() / stride;
@@ -776,6 +810,50 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         }
         for (std::size_t s = me + 1; s < p; ++s)
             take_candidates_from(s);
+    }
+
+    // The coarse cell holding x, cells `size` wide from the origin, each
+    // coordinate within +-2^20 (farther cells merge at that edge: two
+    // particles a cell apart stay at most a cell apart).
+    using CoarseCell = std::array<std::int64_t, D>;
+    static constexpr std::int64_t coarse_limit = std::int64_t(1) << 20;
+    static CoarseCell coarse_cell(const Vec<D>& x, Real size) {
+        CoarseCell c;
+        for (int a = 0; a < D; ++a) {
+            const Real u = std::floor(x[a] / size);
+            c[std::size_t(a)] = u < Real(-coarse_limit)      ? -coarse_limit
+                                : u > Real(coarse_limit - 1) ? coarse_limit - 1
+                                                             : std::int64_t(u);
+        }
+        return c;
+    }
+    static std::uint64_t coarse_key(const CoarseCell& c) {
+        std::uint64_t key = 0;
+        for (int a = 0; a < D; ++a)
+            key = key << 21 | std::uint64_t(c[std::size_t(a)] + coarse_limit);
+        return key;
+    }
+    // The keys of the 3^D cells around the cell of `key`, itself included.
+    static void add_neighbourhood(std::uint64_t key, std::vector<std::uint64_t>& out) {
+        CoarseCell c;
+        for (int a = D - 1; a >= 0; --a) {
+            c[std::size_t(a)] = std::int64_t(key & ((std::uint64_t(1) << 21) - 1)) - coarse_limit;
+            key >>= 21;
+        }
+        constexpr int around = D == 2 ? 9 : 27;
+        for (int k = 0; k < around; ++k) {
+            CoarseCell n = c;
+            int rest = k;
+            bool inside = true;
+            for (int a = 0; a < D; ++a) {
+                n[std::size_t(a)] += rest % 3 - 1;
+                rest /= 3;
+                inside = inside && n[std::size_t(a)] >= -coarse_limit &&
+                         n[std::size_t(a)] < coarse_limit;
+            }
+            if (inside)
+                out.push_back(coarse_key(n));
+        }
     }
 
     static bool finite(const Vec<D>& x) {
@@ -1038,6 +1116,8 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     State<D> local_;
     std::vector<std::uint32_t> local_index_;
     std::vector<Real> boxes_;
+    std::vector<std::uint64_t> cells_, their_cells_, beside_;
+    std::vector<std::uint32_t> candidate_index_;
     std::vector<std::uint8_t> keep_;
     std::vector<std::uint8_t> near_, grown_;
     std::vector<std::ptrdiff_t> last_marked_; // grow_cells: per line across a slab

@@ -154,15 +154,17 @@ class ClipRun {
     ClipRun(const Scene& scene, const fs::path& folder, const RunOptions& options,
             std::unique_ptr<GlContext> gl_context)
         : scene_(scene), folder_(folder), options_(options), derived_(derive(scene)),
-          sim_(make_simulation<D>(scene, derived_)),
+          // Over MPI ranks, each step shared out (docs/mpi.md).
+          sim_(make_simulation<D>(scene, derived_,
+                                  [&](const Params<D>& params, const EffectList<D>& effects) {
+                                      return parallel::make_rank_partition<D>(params, effects,
+                                                                              scene.file);
+                                  })),
           frames_(static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1),
           progress_(progress_mode(options.progress, options.quiet || !parallel::leader(),
                                   isatty(STDOUT_FILENO)),
                     options.progress_interval_s) {
-        // Over MPI ranks, each step shared out (docs/mpi.md); rank 0 alone
-        // has sinks and writes run.json.
-        sim_.set_partition(
-            parallel::make_rank_partition<D>(sim_.params(), sim_.effects(), scene.file));
+        // Over MPI ranks rank 0 alone has sinks and writes run.json.
         // Every rank draws its own spheres when frames are composited by
         // depth (render/depth_composite.hpp); the exchange is made on every
         // rank at once.
@@ -184,6 +186,9 @@ class ClipRun {
         for (const auto& sink : sinks_)
             fields_ |= sink->fields();
         fields_.pressure = parallel::leader_says(fields_.pressure);
+        // Marked by every rank together when rank 0 draws (3D culling).
+        cull_buried_ =
+            D == 3 && scene_.render.cull_buried && parallel::leader_says(render_ != nullptr);
         sim_.set_output_fields(fields_);
         // No --threads: the count is measured as the run goes. Over MPI ranks
         // each rank keeps all its cores (the ranks step in lockstep).
@@ -379,8 +384,8 @@ class ClipRun {
         snapshot_.stats = measure_frame(sim_.params(), sim_.state());
         snapshot_.wall_seconds = wall();
         copy_fields(sim_.state(), snapshot_, fields_);
-        if ((render_ || rank_renderer_) && D == 3 && scene_.render.cull_buried)
-            mark_buried(sim_.state(), sim_.neighbours(), scene_.fluid.spacing, snapshot_.buried);
+        if (cull_buried_)
+            sim_.mark_buried(scene_.fluid.spacing, snapshot_.buried);
         frame_fields_s_ += seconds_since(start);
     }
 
@@ -742,6 +747,7 @@ class ClipRun {
     }
 
     const bool leader_ = parallel::leader(); // rank 0, or the only process
+    bool cull_buried_ = false;               // frames mark the buried particles
     const Scene& scene_;
     const fs::path folder_;
     const RunOptions& options_;

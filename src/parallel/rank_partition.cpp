@@ -5,6 +5,7 @@
 #include "sph/effects/surface_tension.hpp"
 #include "sph/neighbours/sorted_grid.hpp"
 #include "sph/solvers/explicit_solver.hpp"
+#include "sph/surface.hpp"
 
 #include <algorithm>
 #include <array>
@@ -317,6 +318,34 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         ++rebalances_;
     }
 
+    void update_fields(Solver<D>& solver, const Params<D>& params, State<D>& state,
+                       StepContext<D>& context) override {
+        {
+            auto timed = context.time(Stage::rank_halo);
+            gather_halo(params, 0, state, {}, false);
+            plan_halo();
+        }
+        context.halo = this;
+        solver.update_fields(params, local_, context);
+        context.halo = nullptr;
+        copy_owned_back(state);
+    }
+
+    void mark_buried(const NeighbourList& neighbours, Real spacing,
+                     std::vector<std::uint8_t>& buried) override {
+        sph::mark_buried(local_, neighbours, spacing, local_buried_);
+        const auto p = std::size_t(ranks_);
+        std::vector<int> counts(p), displacements(p);
+        for (std::size_t r = 0; r < p; ++r) {
+            counts[r] = message_size(count_[r]);
+            displacements[r] = message_size(first_[r]);
+        }
+        buried.resize(total_particles());
+        MPI_Allgatherv(local_buried_.data() + owned_offset_, message_size(owned_in_local_),
+                       MPI_UINT8_T, buried.data(), counts.data(), displacements.data(), MPI_UINT8_T,
+                       MPI_COMM_WORLD);
+    }
+
     void gather(const State<D>& share, State<D>& whole) override {
         constexpr std::size_t stride = 3 * D + 3;
         const std::size_t m = share.size(), n = total_particles();
@@ -338,13 +367,15 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             counts[r] = message_size(count_[r] * stride);
             displacements[r] = message_size(first_[r] * stride);
         }
-        receive_.resize(n * stride);
-        MPI_Allgatherv(send_.data(), message_size(send_.size()), MPI_DOUBLE, receive_.data(),
+        // A buffer of its own, let go after the frame: the steps' buffers
+        // stay the size of a share and its halo.
+        std::vector<Real> received(n * stride);
+        MPI_Allgatherv(send_.data(), message_size(send_.size()), MPI_DOUBLE, received.data(),
                        counts.data(), displacements.data(), MPI_DOUBLE, MPI_COMM_WORLD);
         whole.resize(n);
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
-            const Real* in = receive_.data() + i * stride;
+            const Real* in = received.data() + i * stride;
             for (int a = 0; a < D; ++a) {
                 whole.position[i][a] = in[a];
                 whole.velocity[i][a] = in[D + a];
@@ -356,13 +387,6 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         }
         frame_gather_bytes_ += double((n - m) * stride * sizeof(Real));
         ++frames_;
-    }
-
-    void take_share(const State<D>& whole, State<D>& share) const override {
-        const std::size_t begin = first_[std::size_t(rank_)];
-        share.resize(count_[std::size_t(rank_)]);
-        for (std::size_t i = 0; i < share.size(); ++i)
-            copy_particle(whole, begin + i, share, i);
     }
 
     // ---- HaloExchange (the solver, mid-step) -----------------------------
@@ -1167,9 +1191,8 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     // kept arrays into kept_owned_ (kept only where every rank's step
     // filled them, as one process keeps them only when they cover every
     // particle); the step's figures to rank 0.
-    void keep_results(State<D>& state, std::span<std::vector<Real>* const> kept, double seconds) {
-        const std::size_t m = state.size();
-        for (std::size_t i = 0; i < m; ++i) {
+    void copy_owned_back(State<D>& state) const {
+        for (std::size_t i = 0; i < state.size(); ++i) {
             const std::size_t k = owned_offset_ + i;
             state.position[i] = local_.position[k];
             state.velocity[i] = local_.velocity[k];
@@ -1177,6 +1200,11 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             state.density[i] = local_.density[k];
             state.pressure[i] = local_.pressure[k];
         }
+    }
+
+    void keep_results(State<D>& state, std::span<std::vector<Real>* const> kept, double seconds) {
+        const std::size_t m = state.size();
+        copy_owned_back(state);
         std::uint32_t filled = 0;
         for (std::size_t a = 0; a < kept.size(); ++a)
             if (kept[a]->size() == local_.size())
@@ -1254,6 +1282,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     // The step's particles and their places in the memory order.
     State<D> local_;
     std::vector<std::uint32_t> local_index_;
+    std::vector<std::uint8_t> local_buried_;
     // The halo's choice: every rank's box, this rank's coarse cells and
     // those beside another rank's, the candidates it sends.
     std::vector<Real> boxes_;

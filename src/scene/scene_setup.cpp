@@ -226,12 +226,13 @@ SourceList<D> make_sources(const Scene& scene) {
 }
 
 template <int D>
-Simulation<D> make_simulation(const Scene& scene, const Derived& derived) {
+Simulation<D> make_simulation(const Scene& scene, const Derived& derived,
+                              const PartitionMaker<D>& partition) {
     const Params<D> params = make_params<D>(scene, derived);
     return Simulation<D>(params, make_initial_state<D>(scene, derived),
                          make_solver<D>(scene.solver.name, params),
                          make_neighbour_search<D>(scene.solver.neighbour_search),
-                         make_effects<D>(scene), make_sources<D>(scene));
+                         make_effects<D>(scene), make_sources<D>(scene), partition);
 }
 
 template std::vector<Paddle<2>> make_paddles<2>(const Scene&);
@@ -244,7 +245,7 @@ template EffectList<2> make_effects<2>(const Scene&);
 template EffectList<3> make_effects<3>(const Scene&);
 template SourceList<2> make_sources<2>(const Scene&);
 template SourceList<3> make_sources<3>(const Scene&);
-template Simulation<2> make_simulation<2>(const Scene&, const Derived&);
-template Simulation<3> make_simulation<3>(const Scene&, const Derived&);
+template Simulation<2> make_simulation<2>(const Scene&, const Derived&, const PartitionMaker<2>&);
+template Simulation<3> make_simulation<3>(const Scene&, const Derived&, const PartitionMaker<3>&);
 
 } // namespace sph

@@ -27,8 +27,11 @@ EffectList<D> make_effects(const Scene& scene);
 template <int D>
 SourceList<D> make_sources(const Scene& scene);
 
+// `partition`: over MPI ranks, how the simulation is shared out
+// (sph/partition.hpp); empty: one process.
 template <int D>
-Simulation<D> make_simulation(const Scene& scene, const Derived& derived);
+Simulation<D> make_simulation(const Scene& scene, const Derived& derived,
+                              const PartitionMaker<D>& partition = {});
 
 template <int D>
 Simulation<D> make_simulation(const Scene& scene) {

@@ -10,6 +10,8 @@
 #include "sph/collective.hpp"
 #include "sph/solvers/solver.hpp"
 
+#include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 namespace sph {
@@ -32,12 +34,27 @@ class Partition : public Collective {
     // The ranges cut again by count when they have grown uneven (particles
     // added; params.rebalance_above).
     virtual void rebalance(State<D>& state) = 0;
+    // solver.update_fields(params, state, context) on the whole simulation,
+    // each process computing its share's fields (with a halo); the
+    // context's neighbour lists are then this process's step particles'.
+    virtual void update_fields(Solver<D>& solver, const Params<D>& params, State<D>& state,
+                               StepContext<D>& context) = 0;
+    // mark_buried (sph/surface.hpp) of every particle, after
+    // update_fields(): each process marks its share from its lists
+    // (`neighbours`, update_fields' context's) and every process gets all.
+    virtual void mark_buried(const NeighbourList& neighbours, Real spacing,
+                             std::vector<std::uint8_t>& buried) = 0;
     // The whole simulation's state, on every process, from each one's share.
     virtual void gather(const State<D>& share, State<D>& whole) = 0;
-    // This process's share of `whole` (updated alike on every process).
-    virtual void take_share(const State<D>& whole, State<D>& share) const = 0;
     // What run.json records: ranks, decomposition, balance, bytes moved.
     virtual nlohmann::json report() const = 0;
 };
+
+// Makes the partition of a simulation from its parameters and effects, or
+// null (one process); Simulation calls it before anything else, so that no
+// process ever works on the whole state.
+template <int D>
+using PartitionMaker =
+    std::function<std::unique_ptr<Partition<D>>(const Params<D>&, const EffectList<D>&)>;
 
 } // namespace sph

@@ -1,10 +1,13 @@
 #include "sph/simulation.hpp"
 
 #include "sph/boundaries/boundary_set.hpp"
+#include "sph/surface.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
+#include <span>
 
 namespace sph {
 
@@ -12,22 +15,31 @@ template <int D>
 Simulation<D>::Simulation(const Params<D>& params, State<D> initial,
                           std::unique_ptr<Solver<D>> solver,
                           std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects,
-                          SourceList<D> sources)
+                          SourceList<D> sources, const PartitionMaker<D>& partition)
     : params_(params), state_(std::move(initial)), solver_(std::move(solver)),
       search_(std::move(search)), effects_(std::move(effects)), sources_(std::move(sources)),
       boundaries_(make_boundaries(params_)), boundary_(make_boundary_particles(params_)) {
+    if (partition)
+        partition_ = partition(params_, effects_);
+    if (partition_) {
+        whole_ = state_;
+        partition_->adopt(state_);
+    }
     inspect_start();
 }
 
 template <int D>
 void Simulation<D>::inspect_start() {
-    if (state_.size() == 0)
+    if (particle_count() == 0)
         return;
     // Untimed: the stage times are the run's, which starts after this.
     auto ctx = context();
     ctx.stages = nullptr;
     ctx.place_boundaries(time_);
-    solver_->update_fields(params_, state_, ctx);
+    if (partition_)
+        partition_->update_fields(*solver_, params_, state_, ctx);
+    else
+        solver_->update_fields(params_, state_, ctx);
     // A compressed start (blocks overlapping, a mass too large for the
     // spacing) stores energy the equation of state turns into motion: what
     // it can release is physical speed the watchdog must allow. Only
@@ -38,21 +50,25 @@ void Simulation<D>::inspect_start() {
     for (std::size_t i = 0; i < state_.size(); ++i)
         if (state_.density[i] > state_.density[densest])
             densest = i;
-    const Real rho = std::max(state_.density[densest], params_.rest_density);
+    // The first densest particle in memory order: over processes, the
+    // first process's that holds the largest density.
+    struct {
+        Real density;
+        std::uint32_t id;
+    } top{state_.size() ? state_.density[densest] : -std::numeric_limits<Real>::infinity(),
+          state_.size() ? state_.id[densest] : 0};
+    if (partition_) {
+        Real largest = top.density;
+        partition_->max(std::span(&largest, 1));
+        const int from = partition_->lowest(top.density == largest ? 0 : 1);
+        partition_->broadcast(std::as_writable_bytes(std::span(&top, 1)), from);
+    }
+    const Real rho = std::max(top.density, params_.rest_density);
     const Real energy = solver_->compression_energy(params_, rho);
     if (params_.watchdog.max_speed_adds_start_energy)
         params_.watchdog.max_speed += 2 * std::sqrt(2 * energy);
-    start_density_ratio_ = state_.density[densest] / params_.rest_density;
-    start_densest_id_ = state_.id[densest];
-}
-
-template <int D>
-void Simulation<D>::set_partition(std::unique_ptr<Partition<D>> partition) {
-    partition_ = std::move(partition);
-    if (!partition_)
-        return;
-    whole_ = state_;
-    partition_->adopt(state_);
+    start_density_ratio_ = top.density / params_.rest_density;
+    start_densest_id_ = top.id;
 }
 
 template <int D>
@@ -274,14 +290,19 @@ void Simulation<D>::update_fields() {
         solver_->update_fields(params_, state_, ctx);
         return;
     }
-    // Over processes: the whole state on each, its fields as one process
-    // computes them, and this process's share of them kept for its steps.
-    {
-        StageTimes::Scope timed(&stages_, Stage::rank_gather);
-        partition_->gather(state_, whole_);
-    }
-    solver_->update_fields(params_, whole_, ctx);
-    partition_->take_share(whole_, state_);
+    // Over processes: each computes its share's fields, then every one
+    // gets the whole state for the frame's outputs.
+    partition_->update_fields(*solver_, params_, state_, ctx);
+    StageTimes::Scope timed(&stages_, Stage::rank_gather);
+    partition_->gather(state_, whole_);
+}
+
+template <int D>
+void Simulation<D>::mark_buried(Real spacing, std::vector<std::uint8_t>& buried) {
+    if (partition_)
+        partition_->mark_buried(neighbours_, spacing, buried);
+    else
+        sph::mark_buried(state_, neighbours_, spacing, buried);
 }
 
 template <int D>

@@ -27,9 +27,13 @@ class Simulation {
   public:
     // The boundaries are made here from params (walls, obstacles, paddles,
     // boundary_set.hpp), with their particles.
+    // `partition`, when given, shares the simulation out over processes
+    // (sph/partition.hpp): from then on this process holds its share of
+    // the particles; state() is the whole state as of the last
+    // update_fields().
     Simulation(const Params<D>& params, State<D> initial, std::unique_ptr<Solver<D>> solver,
                std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects,
-               SourceList<D> sources = {});
+               SourceList<D> sources = {}, const PartitionMaker<D>& partition = {});
 
     // One step of the largest stable dt (or the fixed one). The watchdog
     // checks it; a failed step is retried from the state before it, split in
@@ -45,6 +49,10 @@ class Simulation {
     // Density and pressure at the current positions, for output; the
     // paddles' particles are placed at time() first.
     void update_fields();
+    // Which particles are buried (sph/surface.hpp's mark_buried) at the
+    // last update_fields(), from its neighbour lists; over processes every
+    // one must call it.
+    void mark_buried(Real spacing, std::vector<std::uint8_t>& buried);
     // The fields the run's outputs read (all by default): a field no output
     // reads is not computed for output (dfsph's pressure, the pressure at
     // frame times).
@@ -55,13 +63,10 @@ class Simulation {
     // Counters since the last call, then reset.
     StepCounters take_counters();
     // Steps shared out over processes (sph/partition.hpp); null: all here.
-    // From then on this process holds its share of the particles between
-    // frames; state() is the whole state as of the last update_fields().
-    void set_partition(std::unique_ptr<Partition<D>> partition);
     const Partition<D>* partition() const { return partition_.get(); }
 
     const Params<D>& params() const { return params_; }
-    // The particles: all of them. Over processes (set_partition), the whole
+    // The particles: all of them. Over processes (a partition), the whole
     // state gathered by the last update_fields(), the frames' fields.
     const State<D>& state() const { return partition_ ? whole_ : state_; }
     State<D>& state() { return partition_ ? whole_ : state_; }

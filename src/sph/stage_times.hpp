@@ -41,7 +41,7 @@ enum class Stage : std::uint8_t {
     reorder,   // the spatial sort
     // Over MPI ranks (src/parallel/): choosing a rank's halo and copying its
     // particles, the halo's densities from their owners mid-step, the
-    // owned results shared with every rank after it.
+    // whole state gathered at a frame.
     rank_halo,
     halo_exchange,
     rank_gather,

@@ -89,6 +89,10 @@ if ranks > 1:
     assert mpi["steps"] > 0 and mpi["gather_bytes_received_per_step"] > 0, mpi
     # The halo's densities came from their owners (the halo exchange).
     assert mpi["halo_bytes_received_per_step"] > 0, mpi
+    # Each rank held its own particles: together, every particle once.
+    assert sum(mpi["owned_per_rank"]) == run["final_particles"], (mpi, run["final_particles"])
+    # The whole state moved once a frame, not every step.
+    assert mpi["frame_gathers"] == run["frames"], (mpi["frame_gathers"], run["frames"])
     assert any(s["name"] == "halo exchange" for s in run["stages"]), run["stages"]
     print(f"{sys.argv[1]}: imbalance {mpi['imbalance']}, migrations {mpi['migrations']}, "
           f"most ranks one particle visited {mpi['most_ranks_visited']}")
@@ -104,6 +108,10 @@ w, name = sys.argv[1], sys.argv[2]
 mpi = json.load(open(f"{w}/{name}-np3/run.json"))["mpi"]
 if name == "jet_3d":
     assert mpi["migrations"] > 0, mpi
+    assert mpi["migration_bytes_per_step"] > 0, mpi
+    # The emitter filled the last rank: the ranges were cut again between
+    # spatial sorts.
+    assert mpi["rebalances"] > 0, mpi
     assert mpi["most_ranks_visited"] >= 3, mpi
     assert mpi["steps_with_an_empty_rank"] > 0, mpi
 if name == "paddle_obstacle_2d":

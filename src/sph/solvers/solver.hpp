@@ -194,9 +194,10 @@ class Solver {
     // follow. Nothing to do for a solver that keeps none.
     virtual void permute(std::span<const std::uint32_t> /*order*/) {}
     // Those per-particle arrays, each empty or sized to the state the last
-    // step was given. Over MPI ranks the partition keeps them for the whole
-    // state: before a step it gives the solver the entries of the particles
-    // the step holds, after it gathers the owned ones (docs/mpi.md).
+    // step was given. Over MPI ranks the partition keeps them for its own
+    // particles (they migrate with them): before a step it gives the solver
+    // the entries of the particles the step holds (the halo's from their
+    // owners), after it keeps the owned ones (docs/mpi.md).
     virtual std::span<std::vector<Real>* const> kept_arrays() { return {}; }
 };
 

@@ -274,8 +274,12 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         std::vector<std::uint64_t> told;
         std::vector<std::size_t> told_count(p, 0);
         all_to_all(answers, asked_count, told, told_count, answer_tag);
-        // New places, in this rank's sorted order first.
+        // New places, in this rank's sorted order first. A rank's whole
+        // count, for the particles above its span, is added from where that
+        // starts by one running sum (below_[j]: counts that start at j), so
+        // the ranks far away cost nothing per particle.
         places_.assign(m, 0);
+        below_.assign(m + 1, 0);
         for (std::size_t j = 0; j < m; ++j)
             places_[j] = j;
         for (std::size_t s = 0, at = 0; s < p; ++s) {
@@ -293,9 +297,13 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
                     ++answer;
                 places_[j] += told[answer];
             }
-            for (std::size_t j = to; j < m; ++j)
-                places_[j] += count(s);
+            below_[to] += count(s);
             at += question_count[s];
+        }
+        std::uint64_t running = 0;
+        for (std::size_t j = 0; j < m; ++j) {
+            running += below_[j];
+            places_[j] += running;
         }
         // places_ by sorted position -> by memory position.
         sorted_places_.resize(m);
@@ -1307,7 +1315,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     // The spatial sort and migration.
     SortedGrid<D> sorter_;
     std::vector<std::uint32_t> order_, destination_;
-    std::vector<std::uint64_t> sorted_keys_, spans_, places_, sorted_places_;
+    std::vector<std::uint64_t> sorted_keys_, spans_, places_, sorted_places_, below_;
     std::uint64_t migrated_ = 0;
     double migration_bytes_here_ = 0;
     int most_visited_here_ = 1;

@@ -24,8 +24,9 @@ std::optional<BoundaryParticles<D>> static_particles(const Params<D>& p) {
     const Real lattice_volume = p.mass / p.rest_density;
     BoundarySamples<D> samples = sample_obstacles<D>(p.obstacles, p.spacing, p.h, lattice_volume);
     if (p.walls == WallModel::particles) {
-        const auto walls =
-            BoundaryParticles<D>::box_walls(p.domain, p.spacing, p.h, lattice_volume);
+        // Not const: returned, it is moved, not copied (the walls of a large
+        // tank are 10-20 MB).
+        auto walls = BoundaryParticles<D>::box_walls(p.domain, p.spacing, p.h, lattice_volume);
         if (samples.positions.empty())
             return walls;
         samples.positions.insert(samples.positions.end(), walls.positions().begin(),

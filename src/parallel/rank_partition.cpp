@@ -438,6 +438,20 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         solve_exchange_seconds_ += seconds_since(start);
     }
 
+    // Only where the halo is one support radius deep (nothing reads a halo
+    // particle's own sums: hops_ 1), the passes use neighbour lists (not
+    // the float passes' whole cells), and the halo is not every particle
+    // (a Verlet step whose accelerations are not current drifts the halo
+    // by forces it computes itself). The rows stay in `index`, unread.
+    void trim_rows(NeighbourList& list) const override {
+        if (!trim_rows_ || list.particle_count() != local_.size())
+            return;
+        const std::size_t begin = owned_offset_, end = owned_offset_ + owned_in_local_;
+        const std::uint32_t first = list.start[begin], last = list.start[end];
+        std::fill(list.start.begin(), list.start.begin() + std::ptrdiff_t(begin), first);
+        std::fill(list.start.begin() + std::ptrdiff_t(end), list.start.end(), last);
+    }
+
     std::size_t owned_begin() const override {
         return owned_offset_;
     }
@@ -706,6 +720,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         const Real reach =
             Real(hops_ + (whole_cells_ ? 1 : 0)) * (params.h * (1 + 1e-5) + 2 * move) * (1 + 1e-6);
         everyone = everyone || !(reach > 0) || !std::isfinite(reach);
+        trim_rows_ = hops_ == 1 && !whole_cells_ && !everyone;
         // This rank's box: its owned finite positions.
         Vec<D> lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
         for (std::size_t i = 0; i < m; ++i) {
@@ -1311,6 +1326,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     std::vector<Real> give_values_, need_values_;
     std::vector<MPI_Request> requests_;
     std::size_t owned_offset_ = 0, owned_in_local_ = 0;
+    bool trim_rows_ = false; // trim_rows() empties the halo's rows this step
     double step_halo_bytes_ = 0;
     // The spatial sort and migration.
     SortedGrid<D> sorter_;

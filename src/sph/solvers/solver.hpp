@@ -45,6 +45,11 @@ class HaloExchange {
     // it, the whole sum, on every rank.
     virtual Real sum_before() = 0;
     virtual Real finish_sum(Real sum) = 0;
+    // Empties the halo's rows of a neighbour list just built, where no
+    // result of the step read from a halo particle's own neighbours is kept
+    // or read by an owned one (the halo's densities come from their owners;
+    // its forces are discarded): the passes then skip the halo's rows.
+    virtual void trim_rows(NeighbourList& /*list*/) const {}
 };
 
 // What a step needs besides parameters and state: the neighbour search and the
@@ -136,10 +141,14 @@ struct StepContext {
         {
             auto timed = time(Stage::neighbour_search);
             search.find(positions, h, neighbours);
+            if (halo)
+                halo->trim_rows(neighbours);
         }
         if (boundary) {
             auto timed = time(Stage::boundary_neighbours);
             boundary->find_neighbours(positions, boundary_neighbours);
+            if (halo)
+                halo->trim_rows(boundary_neighbours);
         }
     }
 

@@ -443,6 +443,12 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     // the float passes' whole cells), and the halo is not every particle
     // (a Verlet step whose accelerations are not current drifts the halo
     // by forces it computes itself). The rows stay in `index`, unread.
+    void want_rows(NeighbourSearch<D>& search) const override {
+        if (trim_rows_)
+            search.want_rows(owned_offset_, owned_offset_ + owned_in_local_);
+        else
+            search.want_rows(0, ~std::size_t(0));
+    }
     void trim_rows(NeighbourList& list) const override {
         if (!trim_rows_ || list.particle_count() != local_.size())
             return;

@@ -30,6 +30,16 @@ class NeighbourSearch {
                                                       Real /*radius*/) {
         return {};
     }
+    // Only the rows of particles [begin, end) are wanted by the next finds
+    // (over MPI ranks, a rank's own particles: its halo's rows are never
+    // read); a search may leave the others empty. All by default.
+    void want_rows(std::size_t begin, std::size_t end) {
+        rows_begin_ = begin;
+        rows_end_ = end;
+    }
+
+  protected:
+    std::size_t rows_begin_ = 0, rows_end_ = ~std::size_t(0);
 };
 
 // The neighbour searches (solver.neighbour_search), in the order of

@@ -493,6 +493,7 @@ SPHCLIP_CLONED void SortedGrid<D>::list_neighbours(Real radius, NeighbourList& o
     const std::size_t n = order_.size();
     const std::size_t cells = cell_start_.size() - 1;
     const Real r2 = radius * radius;
+    const std::size_t rows_begin = this->rows_begin_, rows_end = this->rows_end_;
     scratch_.resize(std::max<std::size_t>(scratch_.size(), omp_get_max_threads()));
     row_offset_.resize(n);
     row_thread_.resize(n);
@@ -509,9 +510,28 @@ SPHCLIP_CLONED void SortedGrid<D>::list_neighbours(Real radius, NeighbourList& o
 #pragma omp for schedule(dynamic, 16)
         for (std::size_t c = 0; c < cells; ++c) {
             const std::uint32_t first = cell_start_[c], last = cell_start_[c + 1];
+            // Rows not wanted (want_rows) stay empty; a cell with none wanted
+            // gathers nothing.
+            bool wanted = false;
+            for (std::uint32_t k = first; k < last && !wanted; ++k)
+                wanted = order_[k] >= rows_begin && order_[k] < rows_end;
+            if (!wanted) {
+                for (std::uint32_t k = first; k < last; ++k) {
+                    row_offset_[order_[k]] = static_cast<std::uint32_t>(used);
+                    row_thread_[order_[k]] = static_cast<std::uint16_t>(thread);
+                    out.start[order_[k] + 1] = 0;
+                }
+                continue;
+            }
             // Gathered once per cell, so each particle runs one long loop.
             const std::size_t candidates = gather_candidates(c, r2, s);
             for (std::uint32_t k = first; k < last; ++k) {
+                if (order_[k] < rows_begin || order_[k] >= rows_end) {
+                    row_offset_[order_[k]] = static_cast<std::uint32_t>(used);
+                    row_thread_[order_[k]] = static_cast<std::uint16_t>(thread);
+                    out.start[order_[k] + 1] = 0;
+                    continue;
+                }
                 if constexpr (D == 2)
                     squared_distances(candidates, s.x[0].data(), s.x[1].data(), sorted_x_[0][k],
                                       sorted_x_[1][k], s.distance2.data());

@@ -50,6 +50,9 @@ class HaloExchange {
     // or read by an owned one (the halo's densities come from their owners;
     // its forces are discarded): the passes then skip the halo's rows.
     virtual void trim_rows(NeighbourList& /*list*/) const {}
+    // Tells the search which rows trim_rows() would keep, so that it need
+    // not list the others.
+    virtual void want_rows(NeighbourSearch<D>& /*search*/) const {}
 };
 
 // What a step needs besides parameters and state: the neighbour search and the
@@ -140,9 +143,13 @@ struct StepContext {
     void find_neighbours(std::span<const Vec<D>> positions, Real h) {
         {
             auto timed = time(Stage::neighbour_search);
-            search.find(positions, h, neighbours);
             if (halo)
+                halo->want_rows(search);
+            search.find(positions, h, neighbours);
+            if (halo) {
                 halo->trim_rows(neighbours);
+                search.want_rows(0, ~std::size_t(0));
+            }
         }
         if (boundary) {
             auto timed = time(Stage::boundary_neighbours);

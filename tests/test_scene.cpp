@@ -221,6 +221,8 @@ TEST_CASE("a value out of its range names the field", "[scene]") {
         {"/material/rest_density", "0", "material.rest_density", "greater than 0"},
         {"/material/bulk_modulus", "-2e5", "material.bulk_modulus", "greater than 0"},
         {"/solver/dt", "0", "solver.dt", "greater than 0"},
+        {"/solver/rebalance_above", "0.5", "solver.rebalance_above", "between 1 and 1000"},
+        {"/solver/rebalance_above", "2000", "solver.rebalance_above", "between 1 and 1000"},
         {"/fluid/smoothing_ratio", "-2", "fluid.smoothing_ratio", "greater than 0"},
         {"/dimension", "4", "dimension", "between 2 and 3"},
         {"/dimension", "1", "dimension", "between 2 and 3"},

@@ -325,6 +325,12 @@ void check_output_name(const FieldReader& r, const Scene& s) {
 // The solver's keys against each other and against what the solver can do.
 void check_solver(const FieldReader& r, const Scene& s) {
     const SolverCapabilities& solver = solver_capabilities(s.solver.name);
+    // A threshold below 1 would cut the ranges again at every step.
+    if (!(s.solver.rebalance_above >= 1 && s.solver.rebalance_above <= 1000))
+        r.fail("solver.rebalance_above",
+               fmt::format("must be between 1 and 1000 (the fullest rank's particles over the "
+                           "mean), got {}",
+                           s.solver.rebalance_above));
     if (s.solver.dt_min > s.solver.dt_max)
         r.fail("solver.dt_min", fmt::format("must not exceed solver.dt_max ({} s), got {} s",
                                             s.solver.dt_max, s.solver.dt_min));

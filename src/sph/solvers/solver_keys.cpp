@@ -120,9 +120,8 @@ const KeyTable<SolverSettings>& solver_keys() {
          .doc = "Over MPI ranks: between steps, the ranks' ranges of the cell order are cut "
                 "again by particle count when the rank owning the most holds more than this "
                 "times the mean (besides at every spatial sort); particles then move between "
-                "ranks. Changes nothing in the results.",
-         .min = 1,
-         .max = 1000},
+                "ranks. Changes nothing in the results. From 1 to 1000.",
+         .bound = Bound::positive},
         {.path = "precision",
          .field = auto_enum_field<&S::precision>(),
          .doc = "Arithmetic of wcsph's density and pressure passes: single (float, a grid cell "

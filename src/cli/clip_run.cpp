@@ -182,7 +182,7 @@ class ClipRun {
             rank_renderer_->share_over_ranks(exchange_.get());
         }
         // Only the fields some sink reads are computed for output and copied
-        // (rank 0's sinks: every rank computes what rank 0 does).
+        // (rank 0's sinks: every rank computes its share as rank 0 asks).
         for (const auto& sink : sinks_)
             fields_ |= sink->fields();
         fields_.pressure = parallel::leader_says(fields_.pressure);
@@ -198,7 +198,7 @@ class ClipRun {
             return;
         record_.path = folder_ / "run.json";
         record_.document = starting_document();
-        record_.start(sim_.state().size());
+        record_.start(sim_.particle_count());
         if (!options_.quiet)
             print_start();
     }
@@ -275,7 +275,7 @@ class ClipRun {
               {"dt", derived_.dt},
               {"sound_speed", derived_.sound_speed},
               {"max_speed", sim_.params().watchdog.max_speed}}},
-            {"particles", sim_.state().size()},
+            {"particles", sim_.particle_count()},
             {"threads", omp_get_max_threads()},
             {"mpi", {{"ranks", parallel::size()}}},
             {"started_utc", utc_iso8601(started_)},
@@ -307,7 +307,7 @@ class ClipRun {
     void print_start() const {
         say("sphclip: {} ({}D, {} solver): {} particles, h = {:.4g} m, m = {:.4g} kg, "
             "dt = {:.4g} s, {} frames of {:.4g} s -> {}\n",
-            scene_.name, D, solver_capabilities(scene_.solver.name).name, sim_.state().size(),
+            scene_.name, D, solver_capabilities(scene_.solver.name).name, sim_.particle_count(),
             derived_.h, derived_.mass, derived_.dt, frames_, scene_.duration, folder_.string());
         if (options_.fast_preview)
             say("sphclip: fast preview: half-size frames ({}x{}), x264 preset {}\n",
@@ -330,8 +330,10 @@ class ClipRun {
                         nullptr};
             take_snapshot(k);
             // No stats row or export ever holds inf or NaN: such a frame
-            // ends the run as unstable before any of it is written.
-            if (std::string bad = non_finite_in_snapshot(); !bad.empty())
+            // ends the run as unstable before any of it is written. (Over
+            // MPI ranks rank 0 sees every particle and names the first; the
+            // others look at their own and decide with it.)
+            if (std::string bad = non_finite_in_snapshot(); parallel::any_rank(!bad.empty()))
                 return {RunStatus::unstable,
                         fmt::format("frame {} (t = {:.4g} s, step {}) holds a non-finite value: "
                                     "{}; none of the frame was written",
@@ -381,9 +383,15 @@ class ClipRun {
         snapshot_.time = sim_.time();
         snapshot_.steps_taken = sim_.take_counters();
         const auto start = Clock::now();
-        snapshot_.stats = measure_frame(sim_.params(), sim_.state());
+        // Over MPI ranks rank 0's state() is every particle, the others'
+        // their own: only rank 0 writes the frame (the others draw their
+        // own spheres when frames are composited by depth).
+        if (leader_)
+            snapshot_.stats = measure_frame(sim_.params(), sim_.state());
         snapshot_.wall_seconds = wall();
         copy_fields(sim_.state(), snapshot_, fields_);
+        snapshot_.owned = sim_.share_size();
+        snapshot_.total = sim_.particle_count();
         if (cull_buried_)
             sim_.mark_buried(scene_.fluid.spacing, snapshot_.buried);
         frame_fields_s_ += seconds_since(start);

@@ -136,15 +136,15 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     }
 
     // ---- Partition ------------------------------------------------------
-    void adopt(State<D>& state) override {
-        cut_evenly(state.size());
-        const std::size_t begin = first_[std::size_t(rank_)], m = count_[std::size_t(rank_)];
-        State<D> share;
-        share.resize(m);
-        for (std::size_t i = 0; i < m; ++i)
-            copy_particle(state, begin + i, share, i);
-        state = std::move(share);
-        visited_.assign(m, own_bit());
+    typename Partition<D>::Share starting_share(std::size_t total) override {
+        cut_evenly(total);
+        return {first_[std::size_t(rank_)], count_[std::size_t(rank_)]};
+    }
+
+    void adopt(State<D>& share) override {
+        if (share.size() != count_[std::size_t(rank_)])
+            throw std::logic_error("a rank's starting share is not the one starting_share cut");
+        visited_.assign(share.size(), own_bit());
         kept_owned_.clear();
         kept_mask_ = 0;
     }
@@ -348,10 +348,17 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             counts[r] = message_size(count_[r]);
             displacements[r] = message_size(first_[r]);
         }
+        if (rank_ != 0) {
+            buried.assign(local_buried_.begin() + std::ptrdiff_t(owned_offset_),
+                          local_buried_.begin() + std::ptrdiff_t(owned_offset_ + owned_in_local_));
+            MPI_Gatherv(buried.data(), message_size(owned_in_local_), MPI_UINT8_T, nullptr, nullptr,
+                        nullptr, MPI_UINT8_T, 0, MPI_COMM_WORLD);
+            return;
+        }
         buried.resize(total_particles());
-        MPI_Allgatherv(local_buried_.data() + owned_offset_, message_size(owned_in_local_),
-                       MPI_UINT8_T, buried.data(), counts.data(), displacements.data(), MPI_UINT8_T,
-                       MPI_COMM_WORLD);
+        MPI_Gatherv(local_buried_.data() + owned_offset_, message_size(owned_in_local_),
+                    MPI_UINT8_T, buried.data(), counts.data(), displacements.data(), MPI_UINT8_T, 0,
+                    MPI_COMM_WORLD);
     }
 
     void gather(const State<D>& share, State<D>& whole) override {
@@ -375,11 +382,17 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             counts[r] = message_size(count_[r] * stride);
             displacements[r] = message_size(first_[r] * stride);
         }
+        ++frames_;
+        if (rank_ != 0) {
+            MPI_Gatherv(send_.data(), message_size(send_.size()), MPI_DOUBLE, nullptr, nullptr,
+                        nullptr, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+            return;
+        }
         // A buffer of its own, let go after the frame: the steps' buffers
         // stay the size of a share and its halo.
         std::vector<Real> received(n * stride);
-        MPI_Allgatherv(send_.data(), message_size(send_.size()), MPI_DOUBLE, received.data(),
-                       counts.data(), displacements.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+        MPI_Gatherv(send_.data(), message_size(send_.size()), MPI_DOUBLE, received.data(),
+                    counts.data(), displacements.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
         whole.resize(n);
 #pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
@@ -394,7 +407,6 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             whole.id[i] = static_cast<std::uint32_t>(in[3 * D + 2]);
         }
         frame_gather_bytes_ += double((n - m) * stride * sizeof(Real));
-        ++frames_;
     }
 
     // ---- HaloExchange (the solver, mid-step) -----------------------------

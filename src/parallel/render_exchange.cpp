@@ -38,6 +38,10 @@ class RenderExchange final : public RankCompositing {
     int ranks() const override { return ranks_; }
     bool by_depth(std::size_t particles) const override { return particles >= from_particles_; }
 
+    void from_leader(std::span<std::byte> bytes) override {
+        MPI_Bcast(bytes.data(), message_count(bytes.size()), MPI_BYTE, 0, comm_);
+    }
+
     void min_over_ranks(std::span<std::uint32_t> values) override {
         MPI_Allreduce(MPI_IN_PLACE, values.data(), message_count(values.size()), MPI_UINT32_T,
                       MPI_MIN, comm_);

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <span>
 
 namespace sph {
 
@@ -108,7 +109,7 @@ void FrameRenderer::share_over_ranks(RankCompositing* ranks) {
 }
 
 Image FrameRenderer::render(const Snapshot& frame) {
-    composited_ = ranks_ && ranks_->by_depth(frame.size());
+    composited_ = ranks_ && ranks_->by_depth(frame.total_particles());
     if (composited_)
         return render_composited(frame);
     Parts& p = *parts_;
@@ -198,11 +199,13 @@ Image FrameRenderer::render_composited(const Snapshot& frame) {
     const auto start = Clock::now();
     PartClock parts(time_parts_, timings_.part_seconds);
     const bool leader = ranks_->rank() == 0;
-    // Every rank has the frame's camera: the same snapshot, the same rig.
-    p.pose = p.rig.pose(frame);
+    // The frame's camera, fitted by rank 0, which alone holds every
+    // particle; each rank draws its own, the first of its snapshot.
+    if (leader)
+        p.pose = p.rig.pose(frame);
+    ranks_->from_leader(std::as_writable_bytes(std::span(&p.pose, 1)));
     const Camera camera = make_camera(settings_, p.pose, p.layout);
-    const auto [first, last] = owned_range(frame.size(), ranks_->rank(), ranks_->ranks());
-    p.batch.fill(frame, camera, p.outline_rule, first, last);
+    p.batch.fill(frame, camera, p.outline_rule, 0, std::min(frame.owned, frame.size()));
     counts_ = {p.batch.drawn(), p.batch.outside_view(), p.batch.below_range(),
                p.batch.above_range()};
     ranks_->sum_on_leader(counts_);

@@ -45,6 +45,9 @@ class RankCompositing {
     // Whether a frame of `particles` particles is composited by depth (the
     // same answer on every rank), else drawn whole on rank 0.
     virtual bool by_depth(std::size_t particles) const = 0;
+    // Every rank: rank 0's `bytes` (the frame's camera pose, which rank 0
+    // alone, holding every particle, can fit).
+    virtual void from_leader(std::span<std::byte> bytes) = 0;
     // Every rank: each value replaced by its minimum over the ranks.
     virtual void min_over_ranks(std::span<std::uint32_t> values) = 0;
     // Every rank: the counts summed over the ranks, into rank 0's.
@@ -58,12 +61,5 @@ class RankCompositing {
     virtual void receive_layers(std::size_t samples,
                                 const std::function<void(int, const RankLayerPixels&)>& take) = 0;
 };
-
-// The particles rank r of P owns in a frame of n: [n r / P, n (r + 1) / P),
-// the simulation's cut (parallel/rank_partition.hpp).
-inline std::pair<std::size_t, std::size_t> owned_range(std::size_t n, int rank, int ranks) {
-    return {n * std::size_t(rank) / std::size_t(ranks),
-            n * std::size_t(rank + 1) / std::size_t(ranks)};
-}
 
 } // namespace sph

@@ -11,7 +11,9 @@
 #include "sph/lattice.hpp"
 #include "sph/sources/emitter.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
+#include <limits>
 
 namespace sph {
 
@@ -106,8 +108,13 @@ StartLaw start_law(const Scene& scene) {
     }
 }
 
+// The blocks' particles, numbered in order: those numbered first to
+// first + kept - 1 are kept (all of them with the defaults); `total` is
+// set to how many there are.
 template <int D>
-State<D> make_initial_state(const Scene& scene, const Derived& derived) {
+State<D> lay_initial_state(const Scene& scene, const Derived& derived, std::size_t& total,
+                           std::size_t first = 0,
+                           std::size_t kept = std::numeric_limits<std::size_t>::max()) {
     const Real s = scene.fluid.spacing;
     const StartLaw law = start_law(scene);
     const Vec<D> gravity =
@@ -120,7 +127,7 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
     for (const Paddle<D>& paddle : make_paddles<D>(scene))
         obstacles.push_back({ObstacleShape::box, paddle.box, Vec<D>(0), 0, nullptr});
     State<D> state;
-    state.resize(derived.particles);
+    state.resize(std::min(derived.particles, kept));
     std::size_t next = 0;
     for (const auto& block : scene.fluid.blocks) {
         glm::vec<D, std::size_t> count;
@@ -147,6 +154,10 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
             }
             if (blocked_by_obstacle<D>(obstacles, x, s))
                 continue;
+            if (next - first >= kept) { // unsigned: below first too
+                ++next;
+                continue;
+            }
             // 0: the first step sums it; a hydrostatic start gives the
             // density the site carries (read where the density is carried).
             Real density = 0;
@@ -157,11 +168,12 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
                 x = hydrostatic_site<D>(x, up, top, bottom, law, g, scene.material.rest_density,
                                         scene.material.bulk_modulus);
             }
-            state.position[next] = x;
-            state.density[next] = density;
-            state.velocity[next] = to_vec<D>(block.velocity);
-            state.acceleration[next] = Vec<D>(0);
-            state.id[next] = static_cast<std::uint32_t>(next);
+            const std::size_t i = next - first;
+            state.position[i] = x;
+            state.density[i] = density;
+            state.velocity[i] = to_vec<D>(block.velocity);
+            state.acceleration[i] = Vec<D>(0);
+            state.id[i] = static_cast<std::uint32_t>(next);
             ++next;
         }
     }
@@ -169,8 +181,25 @@ State<D> make_initial_state(const Scene& scene, const Derived& derived) {
         throw InputError(scene.file, "effects.obstacles",
                          "every fluid particle of the blocks lies inside an obstacle (or within "
                          "half a spacing of one)");
-    state.resize(next);
+    total = next;
+    state.resize(std::min(next - std::min(next, first), kept));
     return state;
+}
+
+template <int D>
+State<D> make_initial_state(const Scene& scene, const Derived& derived) {
+    std::size_t total = 0;
+    return lay_initial_state<D>(scene, derived, total);
+}
+
+// Over processes, this process's share of the initial state alone: the
+// particles are counted first (laid, none kept), then its run laid.
+template <int D>
+State<D> make_initial_share(const Scene& scene, const Derived& derived, Partition<D>& partition) {
+    std::size_t total = 0;
+    lay_initial_state<D>(scene, derived, total, 0, 0);
+    const auto share = partition.starting_share(total);
+    return lay_initial_state<D>(scene, derived, total, share.first, share.count);
 }
 
 template <int D>
@@ -229,10 +258,13 @@ template <int D>
 Simulation<D> make_simulation(const Scene& scene, const Derived& derived,
                               const PartitionMaker<D>& partition) {
     const Params<D> params = make_params<D>(scene, derived);
-    return Simulation<D>(params, make_initial_state<D>(scene, derived),
-                         make_solver<D>(scene.solver.name, params),
+    EffectList<D> effects = make_effects<D>(scene);
+    std::unique_ptr<Partition<D>> shared = partition ? partition(params, effects) : nullptr;
+    State<D> initial = shared ? make_initial_share<D>(scene, derived, *shared)
+                              : make_initial_state<D>(scene, derived);
+    return Simulation<D>(params, std::move(initial), make_solver<D>(scene.solver.name, params),
                          make_neighbour_search<D>(scene.solver.neighbour_search),
-                         make_effects<D>(scene), make_sources<D>(scene), partition);
+                         std::move(effects), make_sources<D>(scene), std::move(shared));
 }
 
 template std::vector<Paddle<2>> make_paddles<2>(const Scene&);

@@ -19,9 +19,15 @@ namespace sph {
 template <int D>
 class Partition : public Collective {
   public:
-    // `state`, the whole simulation's (the same on every process), becomes
-    // this process's share.
-    virtual void adopt(State<D>& state) = 0;
+    // Where this process starts: the run [first, first + count) of the
+    // initial state's `total` particles (in make_initial_state's order),
+    // so that no process builds the whole initial state.
+    struct Share {
+        std::size_t first = 0, count = 0;
+    };
+    virtual Share starting_share(std::size_t total) = 0;
+    // `share`, the particles of starting_share(), is this process's.
+    virtual void adopt(State<D>& share) = 0;
     // solver.step(params, dt, state, context) on the whole simulation, each
     // process stepping its share: `state` (the share) as that call would
     // have left it.
@@ -39,20 +45,23 @@ class Partition : public Collective {
     // context's neighbour lists are then this process's step particles'.
     virtual void update_fields(Solver<D>& solver, const Params<D>& params, State<D>& state,
                                StepContext<D>& context) = 0;
-    // mark_buried (sph/surface.hpp) of every particle, after
-    // update_fields(): each process marks its share from its lists
-    // (`neighbours`, update_fields' context's) and every process gets all.
+    // mark_buried (sph/surface.hpp), after update_fields(): each process
+    // marks its share from its lists (`neighbours`, update_fields'
+    // context's); `buried` is then every particle's on process 0 (which
+    // draws) and the share's on the others. Every process calls it.
     virtual void mark_buried(const NeighbourList& neighbours, Real spacing,
                              std::vector<std::uint8_t>& buried) = 0;
-    // The whole simulation's state, on every process, from each one's share.
+    // The whole simulation's state into `whole` on process 0, from each
+    // one's share (the others' `whole` is left as it is). Every process
+    // calls it.
     virtual void gather(const State<D>& share, State<D>& whole) = 0;
     // What run.json records: ranks, decomposition, balance, bytes moved.
     virtual nlohmann::json report() const = 0;
 };
 
 // Makes the partition of a simulation from its parameters and effects, or
-// null (one process); Simulation calls it before anything else, so that no
-// process ever works on the whole state.
+// null (one process); make_simulation calls it before it builds the
+// initial state, so that no process ever holds the whole state.
 template <int D>
 using PartitionMaker =
     std::function<std::unique_ptr<Partition<D>>(const Params<D>&, const EffectList<D>&)>;

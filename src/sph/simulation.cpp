@@ -15,16 +15,13 @@ template <int D>
 Simulation<D>::Simulation(const Params<D>& params, State<D> initial,
                           std::unique_ptr<Solver<D>> solver,
                           std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects,
-                          SourceList<D> sources, const PartitionMaker<D>& partition)
+                          SourceList<D> sources, std::unique_ptr<Partition<D>> partition)
     : params_(params), state_(std::move(initial)), solver_(std::move(solver)),
       search_(std::move(search)), effects_(std::move(effects)), sources_(std::move(sources)),
-      boundaries_(make_boundaries(params_)), boundary_(make_boundary_particles(params_)) {
-    if (partition)
-        partition_ = partition(params_, effects_);
-    if (partition_) {
-        whole_ = state_;
+      boundaries_(make_boundaries(params_)), boundary_(make_boundary_particles(params_)),
+      partition_(std::move(partition)) {
+    if (partition_)
         partition_->adopt(state_);
-    }
     inspect_start();
 }
 
@@ -290,8 +287,8 @@ void Simulation<D>::update_fields() {
         solver_->update_fields(params_, state_, ctx);
         return;
     }
-    // Over processes: each computes its share's fields, then every one
-    // gets the whole state for the frame's outputs.
+    // Over processes: each computes its share's fields, then process 0,
+    // which writes the frame's outputs, gets the whole state.
     partition_->update_fields(*solver_, params_, state_, ctx);
     StageTimes::Scope timed(&stages_, Stage::rank_gather);
     partition_->gather(state_, whole_);

@@ -28,12 +28,12 @@ class Simulation {
     // The boundaries are made here from params (walls, obstacles, paddles,
     // boundary_set.hpp), with their particles.
     // `partition`, when given, shares the simulation out over processes
-    // (sph/partition.hpp): from then on this process holds its share of
-    // the particles; state() is the whole state as of the last
-    // update_fields().
+    // (sph/partition.hpp): `initial` is then this process's share, the
+    // partition's starting_share() of the initial state; state() is the
+    // whole state as of the last update_fields().
     Simulation(const Params<D>& params, State<D> initial, std::unique_ptr<Solver<D>> solver,
                std::unique_ptr<NeighbourSearch<D>> search, EffectList<D> effects,
-               SourceList<D> sources = {}, const PartitionMaker<D>& partition = {});
+               SourceList<D> sources = {}, std::unique_ptr<Partition<D>> partition = {});
 
     // One step of the largest stable dt (or the fixed one). The watchdog
     // checks it; a failed step is retried from the state before it, split in
@@ -66,10 +66,14 @@ class Simulation {
     const Partition<D>* partition() const { return partition_.get(); }
 
     const Params<D>& params() const { return params_; }
-    // The particles: all of them. Over processes (a partition), the whole
-    // state gathered by the last update_fields(), the frames' fields.
-    const State<D>& state() const { return partition_ ? whole_ : state_; }
-    State<D>& state() { return partition_ ? whole_ : state_; }
+    // The particles: all of them. Over processes (a partition), on process
+    // 0 the whole state gathered by the last update_fields(), the frames'
+    // fields; on the others their share (a frame's own particles).
+    const State<D>& state() const { return gathered() ? whole_ : state_; }
+    State<D>& state() { return gathered() ? whole_ : state_; }
+    // This process's particles (all of them in one process), the first of
+    // state()'s.
+    std::size_t share_size() const { return state_.size(); }
     // Particles now, over all processes.
     std::size_t particle_count() const {
         return partition_ ? partition_->total_particles() : state_.size();
@@ -124,12 +128,14 @@ class Simulation {
     void reorder_particles();
     // One step of dt, in halves where the solver asks (see simulation.cpp).
     StepReport take_step(Real dt, StepContext<D>& ctx);
+    // Whether state() is the whole state gathered from the processes.
+    bool gathered() const { return partition_ && partition_->rank() == 0; }
     // Plain steps, checked after each; the first problem found, if any.
     std::optional<StepProblem> try_steps(Real dt, int count);
 
     Params<D> params_;
     State<D> state_; // over processes, this one's share
-    State<D> whole_; // over processes, the whole state at the last update_fields()
+    State<D> whole_; // over processes, on process 0: the whole state at the last update_fields()
     std::unique_ptr<Solver<D>> solver_;
     std::unique_ptr<NeighbourSearch<D>> search_;
     EffectList<D> effects_;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace sph {
@@ -41,8 +42,15 @@ struct Snapshot {
     // 1 for particles deep inside the fluid (sph/surface.hpp), which a camera
     // outside it cannot see; empty when not computed.
     std::vector<std::uint8_t> buried;
+    // Over MPI ranks, where rank 0's snapshot holds every particle (its own
+    // first) and each other rank's only its own: this process's are the
+    // first `owned` (what it draws when frames are composited by depth), of
+    // `total` in the simulation (0: size()).
+    std::size_t owned = std::numeric_limits<std::size_t>::max();
+    std::size_t total = 0;
 
     std::size_t size() const { return density.size(); }
+    std::size_t total_particles() const { return total ? total : size(); }
 };
 
 template <int D>

@@ -39,6 +39,7 @@
 #include <sched.h>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 using namespace sph;
@@ -67,6 +68,41 @@ int thread_count() {
          std::filesystem::directory_iterator("/proc/self/task"))
         ++n;
     return n;
+}
+
+// The particles rank r of P owns in a frame of n: [n r / P, n (r + 1) / P),
+// an even cut as a run's partition makes it.
+std::pair<std::size_t, std::size_t> owned_range(std::size_t n, int rank, int ranks) {
+    return {n * std::size_t(rank) / std::size_t(ranks),
+            n * std::size_t(rank + 1) / std::size_t(ranks)};
+}
+
+// What a rank's renderer sees of a frame in a run: rank 0 every particle,
+// its own first; the others their own only.
+Snapshot rank_frame(const Snapshot& whole) {
+    const auto [first, last] = owned_range(whole.size(), parallel::rank(), parallel::size());
+    Snapshot own;
+    if (parallel::leader()) {
+        own = whole;
+    } else {
+        own.dimension = whole.dimension;
+        const auto d = std::ptrdiff_t(whole.dimension);
+        const auto slice = [&](const auto& from, auto& to, std::ptrdiff_t per) {
+            to.assign(from.begin() + std::ptrdiff_t(first) * per,
+                      from.begin() + std::ptrdiff_t(last) * per);
+        };
+        slice(whole.position, own.position, d);
+        slice(whole.velocity, own.velocity, d);
+        slice(whole.density, own.density, 1);
+        if (!whole.pressure.empty())
+            slice(whole.pressure, own.pressure, 1);
+        slice(whole.id, own.id, 1);
+        if (!whole.buried.empty())
+            slice(whole.buried, own.buried, 1);
+    }
+    own.owned = last - first;
+    own.total = whole.size();
+    return own;
 }
 
 // What rank 0 needs to draw a particle once the state is distributed: its
@@ -218,6 +254,7 @@ int main(int argc, char** argv) {
             // render_bench: the block's spheres ~8 px across at 100k.
             const double box = 0.1, spacing = box / std::ceil(std::cbrt(double(c.particles)));
             const Snapshot s = bench::make_particles(c.particles, block, spacing, box);
+            const Snapshot mine = rank_frame(s);
             RenderSettings r;
             r.width = c.width;
             r.height = c.height;
@@ -258,7 +295,7 @@ int main(int argc, char** argv) {
                 }
                 MPI_Barrier(MPI_COMM_WORLD);
                 start = Clock::now();
-                composited = by_depth.render(s);
+                composited = by_depth.render(mine);
                 if (leader && k >= 0) {
                     depth_ms.push_back(ms_since(start));
                     composite_ms.push_back(by_depth.last_composite_seconds() * 1e3);

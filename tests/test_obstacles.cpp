@@ -8,6 +8,7 @@
 #include "scene/input_error.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_setup.hpp"
+#include "sph/boundaries/boundary_set.hpp"
 #include "sph/boundaries/obstacles.hpp"
 #include "sph/kernels.hpp"
 #include "sph/lattice.hpp"
@@ -545,4 +546,48 @@ TEST_CASE("the shipped obstacle scene loads with SPHERIC benchmark 2's geometry"
     auto sim = make_simulation<2>(scene);
     CHECK(sim.state().size() == 122 * 55);
     CHECK(closest_approach(sim) > 1);
+}
+
+TEST_CASE("a region's boundary particles find what the whole set finds inside it",
+          "[obstacles][mpi]") {
+    // Over MPI ranks each process lays only the walls and shells in a box
+    // around its particles (Simulation::cover_walls): for every point whose
+    // support lies in that box they must be the same particles, with the
+    // same volumes, in the same order, as the whole set gives.
+    const Scene scene = parse(tank_with_box());
+    const auto sim = make_simulation<2>(scene);
+    const Params<2>& p = sim.params();
+    const auto whole = make_static_boundary_particles<2>(p);
+    REQUIRE(whole);
+    const Box<2> region{{0.06, -0.05}, {0.16, 0.04}};
+    const auto part = make_static_boundary_particles<2>(p, &region);
+    REQUIRE(part);
+    CHECK(part->size() > 0);
+    CHECK(part->size() < whole->size() / 2);
+    CHECK(part->static_bounds().min == whole->static_bounds().min);
+    CHECK(part->static_bounds().max == whole->static_bounds().max);
+    std::vector<Vec<2>> query;
+    for (Real x = region.min.x + p.h; x <= region.max.x - p.h; x += 0.0037)
+        for (Real y = region.min.y + p.h; y <= region.max.y - p.h; y += 0.0029)
+            query.push_back({x, y});
+    NeighbourList from_whole, from_part;
+    whole->find_neighbours(query, from_whole);
+    part->find_neighbours(query, from_part);
+    std::size_t pairs = 0;
+    for (std::size_t i = 0; i < query.size(); ++i) {
+        const auto a = from_whole.of(i), b = from_part.of(i);
+        REQUIRE(a.size() == b.size());
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            CHECK(whole->positions()[a[k]] == part->positions()[b[k]]);
+            CHECK(whole->volumes()[a[k]] == part->volumes()[b[k]]);
+        }
+        pairs += a.size();
+    }
+    CHECK(pairs > 100);
+    // A region with nothing in it holds no particle, on the same grid.
+    const Box<2> nowhere{Vec<2>(1), Vec<2>(0)};
+    const auto none = make_static_boundary_particles<2>(p, &nowhere);
+    REQUIRE(none);
+    CHECK(none->size() == 0);
+    CHECK(none->static_bounds().min == whole->static_bounds().min);
 }

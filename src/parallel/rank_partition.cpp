@@ -54,6 +54,7 @@ enum Figure : std::size_t {
     migrated_figure,   // particles it sent to another owner since the last step
     migration_bytes_figure,
     most_visited_figure, // most ranks one of its particles has been owned by
+    walls_figure,        // static boundary particles it holds
     figure_count
 };
 
@@ -99,6 +100,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         give_first_.assign(p + 1, 0);
         last_local_.assign(p, 0);
         last_owned_.assign(p, 0);
+        last_walls_.assign(p, 0);
         seconds_.assign(p, 0);
     }
 
@@ -167,6 +169,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             gather_halo(params, dt, state, kept,
                         params.integrator == Integrator::verlet && !current);
             plan_halo();
+            cover_walls(params);
         }
         if (auto* explicit_solver = dynamic_cast<ExplicitSolver<D>*>(&solver))
             explicit_solver->set_accelerations_current(current, local_.size());
@@ -332,6 +335,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             auto timed = context.time(Stage::rank_halo);
             gather_halo(params, 0, state, {}, false);
             plan_halo();
+            cover_walls(params);
         }
         context.halo = this;
         solver.update_fields(params, local_, context);
@@ -497,6 +501,10 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         return sum;
     }
 
+    void cover_walls_with(typename Partition<D>::WallCover cover) override {
+        cover_ = std::move(cover);
+    }
+
     nlohmann::json report() const override {
         const double steps = std::max<double>(double(steps_), 1);
         const double halo_per_step = halo_bytes_ / steps / ranks_;
@@ -510,7 +518,8 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
              "its own particles only, cut again by count at every spatial sort and when "
              "uneven; a step's halo comes from the ranks around (candidates by box, kept by "
              "cell), its densities from their owners mid-step; particles migrate to their new "
-             "owner; the whole state is gathered at frame times only"},
+             "owner; each holds the wall particles around its own and its halo; the whole "
+             "state is gathered on rank 0 at frame times only"},
             {"halo_support_radii", hops_},
             {"halo_bytes_received_per_step", halo_per_step},
             // dfsph: its iterations' exchanges and sums in particle order
@@ -520,6 +529,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             {"steps", steps_},
             {"owned_per_rank", last_owned_},
             {"owned_and_halo_per_rank", last_local_},
+            {"wall_particles_per_rank", last_walls_},
             {"imbalance",
              {{"particles_mean", work_imbalance_sum_ / steps},
               {"particles_max", work_imbalance_max_},
@@ -711,6 +721,24 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     // the whole simulation (local_index_: their places in it). Each rank
     // sends every rank the owned particles inside its box grown by the
     // reach (candidates); each keeps those in cells near its own particles.
+    // The box within which the step may look for boundary particles: a
+    // support radius (and a Verlet step's drift) around every particle this
+    // rank holds, owned or halo; for the float passes, which read every
+    // particle of the cells around a particle's cell (as wide as h), two.
+    void cover_walls(const Params<D>& params) {
+        if (!cover_)
+            return;
+        Vec<D> lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
+        for (const Vec<D>& x : local_.position)
+            if (finite(x)) {
+                lo = glm::min(lo, x);
+                hi = glm::max(hi, x);
+            }
+        const Real margin =
+            Real(whole_cells_ ? 2 : 1) * (params.h * (1 + 1e-5) + 2 * move_) * (1 + 1e-6);
+        walls_held_here_ = cover_(Box<D>{lo - margin, hi + margin});
+    }
+
     void gather_halo(const Params<D>& params, Real dt, const State<D>& state,
                      std::span<std::vector<Real>* const> kept, bool everyone) {
         const auto p = std::size_t(ranks_);
@@ -721,7 +749,8 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         // steps (symplectic Euler; dfsph, whose redone halves are steps of
         // their own) find every neighbour where the particles are at their
         // start and move them only at their end: no allowance.
-        Real move = 0;
+        Real& move = move_;
+        move = 0;
         if (params.integrator == Integrator::verlet) {
             std::array<Real, 2> rates{0, 0};
             for (std::size_t i = 0; i < m; ++i) {
@@ -1267,6 +1296,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         figures[migrated_figure] = double(migrated_);
         figures[migration_bytes_figure] = migration_bytes_here_;
         figures[most_visited_figure] = double(most_visited_here_);
+        figures[walls_figure] = double(walls_held_here_);
         migrated_ = 0;
         migration_bytes_here_ = 0;
         gathered_figures_.resize(figure_count * std::size_t(ranks_));
@@ -1286,6 +1316,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             const double* f = gathered_figures_.data() + figure_count * r;
             last_owned_[r] = std::uint64_t(f[owned_figure]);
             last_local_[r] = std::uint64_t(f[local_figure]);
+            last_walls_[r] = std::uint64_t(f[walls_figure]);
             seconds_[r] = f[seconds_figure];
             local_total += f[local_figure];
             local_max = std::max(local_max, f[local_figure]);
@@ -1359,9 +1390,13 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     std::uint64_t sums_ = 0;
     bool stepped_ = false;
     std::size_t stepped_size_ = 0;
+    // The boundary particles this rank holds (Simulation's, laid by box).
+    typename Partition<D>::WallCover cover_;
+    Real move_ = 0; // the last halo's Verlet drift allowance
+    std::size_t walls_held_here_ = 0;
     // Balance and traffic, for run.json (rank 0).
     std::vector<double> gathered_figures_;
-    std::vector<std::uint64_t> last_local_, last_owned_;
+    std::vector<std::uint64_t> last_local_, last_owned_, last_walls_;
     std::vector<double> seconds_;
     std::uint64_t steps_ = 0, halo_sum_ = 0, frames_ = 0, rebalances_ = 0;
     double halo_bytes_ = 0, migration_bytes_ = 0, frame_gather_bytes_ = 0;

@@ -55,6 +55,14 @@ class Partition : public Collective {
     // one's share (the others' `whole` is left as it is). Every process
     // calls it.
     virtual void gather(const State<D>& share, State<D>& whole) = 0;
+    // The wall particles (and obstacles' shells) each process holds are
+    // those near its particles: after each exchange of the halo the
+    // partition calls `cover` with the box holding every point where the
+    // step may look for boundary particles, and Simulation lays the
+    // boundary particles of a box around it when those it holds do not;
+    // `cover` returns how many static ones it holds.
+    using WallCover = std::function<std::size_t(const Box<D>&)>;
+    virtual void cover_walls_with(WallCover cover) = 0;
     // What run.json records: ranks, decomposition, balance, bytes moved.
     virtual nlohmann::json report() const = 0;
 };

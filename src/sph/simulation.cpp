@@ -18,11 +18,42 @@ Simulation<D>::Simulation(const Params<D>& params, State<D> initial,
                           SourceList<D> sources, std::unique_ptr<Partition<D>> partition)
     : params_(params), state_(std::move(initial)), solver_(std::move(solver)),
       search_(std::move(search)), effects_(std::move(effects)), sources_(std::move(sources)),
-      boundaries_(make_boundaries(params_)), boundary_(make_boundary_particles(params_)),
+      boundaries_(make_boundaries(params_)),
+      // Over processes, none of the static ones until the partition says
+      // where this one's particles are.
+      boundary_(make_boundary_particles(params_, partition ? &walls_held_ : nullptr)),
       partition_(std::move(partition)) {
-    if (partition_)
+    if (partition_) {
         partition_->adopt(state_);
+        partition_->cover_walls_with([this](const Box<D>& needed) { return cover_walls(needed); });
+    }
     inspect_start();
+}
+
+template <int D>
+std::size_t Simulation<D>::cover_walls(const Box<D>& needed) {
+    if (!boundary_)
+        return 0;
+    // Laid again when the particles have left the box held, or when it has
+    // grown much larger than they need (the ranks' boxes move and shrink).
+    bool inside = true, oversized = false;
+    Box<D> region;
+    for (int a = 0; a < D; ++a) {
+        inside =
+            inside && walls_held_.min[a] <= needed.min[a] && needed.max[a] <= walls_held_.max[a];
+        const Real extent = std::max<Real>(needed.max[a] - needed.min[a], 0);
+        const Real margin = Real(0.1) * extent + 2 * params_.h;
+        oversized = oversized || walls_held_.max[a] - walls_held_.min[a] > extent + 4 * margin;
+        region.min[a] = needed.min[a] - margin;
+        region.max[a] = needed.max[a] + margin;
+    }
+    if (!inside || oversized) {
+        std::optional<BoundaryParticles<D>> laid = make_static_boundary_particles(params_, &region);
+        if (laid)
+            boundary_->replace_static(std::move(*laid));
+        walls_held_ = region;
+    }
+    return boundary_->moving_begin();
 }
 
 template <int D>

@@ -128,6 +128,9 @@ class Simulation {
     void reorder_particles();
     // One step of dt, in halves where the solver asks (see simulation.cpp).
     StepReport take_step(Real dt, StepContext<D>& ctx);
+    // Over processes: makes the static boundary particles held cover
+    // `needed` (Partition::cover_walls_with); how many it holds.
+    std::size_t cover_walls(const Box<D>& needed);
     // Whether state() is the whole state gathered from the processes.
     bool gathered() const { return partition_ && partition_->rank() == 0; }
     // Plain steps, checked after each; the first problem found, if any.
@@ -141,6 +144,9 @@ class Simulation {
     EffectList<D> effects_;
     SourceList<D> sources_;
     BoundaryList<D> boundaries_;
+    // Over processes: the box whose static boundary particles boundary_
+    // holds (none yet: empty).
+    Box<D> walls_held_{Vec<D>(1), Vec<D>(0)};
     std::optional<BoundaryParticles<D>> boundary_;
     NeighbourList neighbours_;
     NeighbourList boundary_neighbours_;

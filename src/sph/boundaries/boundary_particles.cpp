@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace sph {
@@ -18,7 +19,7 @@ typename BoundaryParticles<D>::Cell BoundaryParticles<D>::cell_of(const Grid& gr
     // lands outside the grid instead of overflowing.
     Cell c;
     for (int a = 0; a < D; ++a) {
-        const Real k = std::floor((x[a] - grid.origin[a]) / h_);
+        const Real k = std::floor((x[a] - grid.origin[a]) / h_) - Real(grid.first[a]);
         c[a] = k >= -2 && k <= Real(grid.cells[a] + 1) ? static_cast<std::int64_t>(k) : -2;
     }
     return c;
@@ -79,17 +80,28 @@ void BoundaryParticles<D>::for_each_near(const Vec<D>& x, Visit&& visit) const {
         for_each_in<true>(moving_grid_, x, visit);
 }
 
+namespace {
+
+template <int D>
+Box<D> bounding_box(std::span<const Vec<D>> points) {
+    Box<D> box{points[0], points[0]};
+    for (const Vec<D>& x : points) {
+        box.min = glm::min(box.min, x);
+        box.max = glm::max(box.max, x);
+    }
+    return box;
+}
+
+} // namespace
+
 template <int D>
 std::size_t BoundaryParticles<D>::fit_grid(Grid& grid, std::span<const Vec<D>> points) const {
-    Vec<D> lo = points[0], hi = points[0];
-    for (const Vec<D>& x : points) {
-        lo = glm::min(lo, x);
-        hi = glm::max(hi, x);
-    }
-    grid.origin = lo;
+    const Box<D> box = bounding_box<D>(points);
+    grid.origin = box.min;
+    grid.first = Cell(0);
     std::size_t total = 1;
     for (int a = 0; a < D; ++a) {
-        grid.cells[a] = static_cast<std::int64_t>(std::floor((hi[a] - lo[a]) / h_)) + 1;
+        grid.cells[a] = static_cast<std::int64_t>(std::floor((box.max[a] - box.min[a]) / h_)) + 1;
         total *= static_cast<std::size_t>(grid.cells[a]);
     }
     return total;
@@ -129,15 +141,39 @@ void BoundaryParticles<D>::mark_near_cells(Grid& grid) {
 }
 
 template <int D>
-std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> positions) {
+std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> positions,
+                                                            const Box<D>* whole) {
     const std::size_t n = positions.size();
+    if (whole)
+        bounds_ = *whole;
+    else if (n > 0)
+        bounds_ = bounding_box<D>(positions);
     if (n == 0) {
         grid_.cell_start.assign(2, 0);
         for (int a = 0; a < D; ++a)
             grid_.cells[a] = 1;
         return {};
     }
-    const std::size_t total = fit_grid(grid_, positions);
+    std::size_t total = fit_grid(grid_, positions);
+    if (whole) {
+        // The whole set's grid, of which only the cells from the first to
+        // the last that hold one of these particles are kept.
+        grid_.origin = whole->min;
+        Cell lo(std::numeric_limits<std::int64_t>::max()),
+            hi(std::numeric_limits<std::int64_t>::min());
+        for (const Vec<D>& x : positions)
+            for (int a = 0; a < D; ++a) {
+                const auto k = static_cast<std::int64_t>(std::floor((x[a] - whole->min[a]) / h_));
+                lo[a] = std::min(lo[a], k);
+                hi[a] = std::max(hi[a], k);
+            }
+        grid_.first = lo;
+        total = 1;
+        for (int a = 0; a < D; ++a) {
+            grid_.cells[a] = hi[a] - lo[a] + 1;
+            total *= static_cast<std::size_t>(grid_.cells[a]);
+        }
+    }
     // Counting sort by cell: positions end up grouped cell by cell.
     std::vector<std::size_t> cell(n);
     std::vector<std::uint32_t>& cell_start = grid_.cell_start;
@@ -221,6 +257,43 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vect
 }
 
 template <int D>
+BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes,
+                                        Real h, const Box<D>& whole)
+    : h_(h) {
+    SPHCLIP_ASSERT(positions.size() == volumes.size());
+    const std::vector<std::uint32_t> destination = build_grid(std::move(positions), &whole);
+    volumes_.resize(volumes.size());
+    for (std::size_t b = 0; b < volumes.size(); ++b)
+        volumes_[destination[b]] = volumes[b];
+    moving_begin_ = positions_.size();
+    velocities_.assign(positions_.size(), Vec<D>(0));
+}
+
+template <int D>
+void BoundaryParticles<D>::replace_static(BoundaryParticles&& other) {
+    SPHCLIP_ASSERT(!other.has_moving());
+    const auto moving = std::ptrdiff_t(moving_begin_);
+    std::vector<Vec<D>> positions(positions_.begin() + moving, positions_.end());
+    std::vector<Vec<D>> velocities(velocities_.begin() + moving, velocities_.end());
+    std::vector<Real> volumes(volumes_.begin() + moving, volumes_.end());
+    positions_ = std::move(other.positions_);
+    volumes_ = std::move(other.volumes_);
+    velocities_ = std::move(other.velocities_);
+    grid_ = std::move(other.grid_);
+    bounds_ = other.bounds_;
+    moving_begin_ = positions_.size();
+    positions_.insert(positions_.end(), positions.begin(), positions.end());
+    volumes_.insert(volumes_.end(), volumes.begin(), volumes.end());
+    velocities_.insert(velocities_.end(), velocities.begin(), velocities.end());
+    // The static ones' memory given back, as a process's share of a large
+    // tank's walls is what it holds in place of all of them.
+    positions_.shrink_to_fit();
+    volumes_.shrink_to_fit();
+    velocities_.shrink_to_fit();
+    refresh_moving_grid();
+}
+
+template <int D>
 BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, KernelKind kernel)
     : h_(h) {
     build_grid(std::move(positions));
@@ -242,40 +315,76 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, K
 }
 
 template <int D>
-BoundaryParticles<D> BoundaryParticles<D>::box_walls(const Box<D>& domain, Real spacing, Real h,
-                                                     Real lattice_volume) {
+std::vector<Vec<D>> BoundaryParticles<D>::box_wall_sites(const Box<D>& domain, Real spacing, Real h,
+                                                         const Box<D>* region, Box<D>& bounds) {
+    using Index = glm::vec<D, std::int64_t, glm::defaultp>;
     const auto layers = static_cast<std::int64_t>(std::ceil(h / spacing));
-    glm::vec<D, std::int64_t, glm::defaultp> inside;
-    for (int a = 0; a < D; ++a)
+    Index inside, first, last; // sites first..last along each axis
+    bool none = false;         // the region holds no site
+    auto site = [&](int a, std::int64_t k) {
+        return domain.min[a] + (Real(k) + Real(0.5)) * spacing;
+    };
+    for (int a = 0; a < D; ++a) {
         inside[a] = static_cast<std::int64_t>(lattice_count(domain.min[a], domain.max[a], spacing));
+        first[a] = -layers;
+        last[a] = inside[a] + layers - 1;
+        bounds.min[a] = site(a, first[a]);
+        bounds.max[a] = site(a, last[a]);
+        if (region) {
+            // The sites within the region's span, and one more each side
+            // for rounding: the test below is exact.
+            const Real lo = std::floor((region->min[a] - domain.min[a]) / spacing - Real(0.5));
+            const Real hi = std::ceil((region->max[a] - domain.min[a]) / spacing - Real(0.5));
+            if (!(lo <= hi) || lo > Real(last[a]) || hi < Real(first[a])) {
+                none = true;
+                continue;
+            }
+            if (lo - 1 > Real(first[a]))
+                first[a] = std::int64_t(lo) - 1;
+            if (hi + 1 < Real(last[a]))
+                last[a] = std::int64_t(hi) + 1;
+        }
+    }
     std::vector<Vec<D>> positions;
-    auto add_if_outside = [&](const glm::vec<D, std::int64_t, glm::defaultp>& k) {
-        bool outside = false;
+    if (none)
+        return positions;
+    auto add_if_outside = [&](const Index& k) {
+        bool outside = false, kept = true;
         Vec<D> x;
         for (int a = 0; a < D; ++a) {
             outside = outside || k[a] < 0 || k[a] >= inside[a];
-            x[a] = domain.min[a] + (Real(k[a]) + Real(0.5)) * spacing;
+            x[a] = site(a, k[a]);
+            kept = kept && (!region || (x[a] >= region->min[a] && x[a] <= region->max[a]));
         }
-        if (outside)
+        if (outside && kept)
             positions.push_back(x);
     };
     if constexpr (D == 2) {
-        for (std::int64_t j = -layers; j < inside[1] + layers; ++j)
-            for (std::int64_t i = -layers; i < inside[0] + layers; ++i)
+        for (std::int64_t j = first[1]; j <= last[1]; ++j)
+            for (std::int64_t i = first[0]; i <= last[0]; ++i)
                 add_if_outside({i, j});
     } else {
-        for (std::int64_t k = -layers; k < inside[2] + layers; ++k)
-            for (std::int64_t j = -layers; j < inside[1] + layers; ++j) {
+        for (std::int64_t k = first[2]; k <= last[2]; ++k)
+            for (std::int64_t j = first[1]; j <= last[1]; ++j) {
                 // Interior rows: only the first and last layers are outside.
                 const bool shell_row = k < 0 || k >= inside[2] || j < 0 || j >= inside[1];
-                for (std::int64_t i = -layers; i < inside[0] + layers; ++i) {
-                    if (!shell_row && i == 0)
+                for (std::int64_t i = first[0]; i <= last[0]; ++i) {
+                    if (!shell_row && i >= 0 && i < inside[0])
                         i = inside[0]; // skip the box's interior
-                    add_if_outside({i, j, k});
+                    if (i <= last[0])
+                        add_if_outside({i, j, k});
                 }
             }
     }
-    return BoundaryParticles(std::move(positions), h, lattice_volume);
+    return positions;
+}
+
+template <int D>
+BoundaryParticles<D> BoundaryParticles<D>::box_walls(const Box<D>& domain, Real spacing, Real h,
+                                                     Real lattice_volume) {
+    Box<D> bounds;
+    return BoundaryParticles(box_wall_sites(domain, spacing, h, nullptr, bounds), h,
+                             lattice_volume);
 }
 
 template <int D>

@@ -32,6 +32,17 @@ class BoundaryParticles {
     // Particles at `positions`, each filling its own volume (volumes[b] for
     // positions[b]): domain walls and obstacles in one set (sph/boundaries/obstacles.hpp).
     BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes, Real h);
+    // The same for some of a set's particles (those a process needs over MPI
+    // ranks, in the set's order) whose bounding box is `whole`: their grid
+    // is the whole set's, so each query finds the same particles in the same
+    // order where these include every one within h of it.
+    BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes, Real h,
+                      const Box<D>& whole);
+
+    // The sites of box_walls (in its order) that lie inside `region` (all
+    // of them without one); `bounds` is set to the box of all of them.
+    static std::vector<Vec<D>> box_wall_sites(const Box<D>& domain, Real spacing, Real h,
+                                              const Box<D>* region, Box<D>& bounds);
 
     // The walls of `domain`: every lattice site (spacing s, aligned with the
     // fluid lattice that starts half a spacing inside the box) outside the box
@@ -44,6 +55,12 @@ class BoundaryParticles {
                                        Real lattice_volume);
 
     std::size_t size() const { return positions_.size(); }
+    // The bounding box of the static particles of the whole set (of which
+    // this may hold some); empty (min > max) when there are none.
+    const Box<D>& static_bounds() const { return bounds_; }
+    // Replaces the static particles with `other`'s (a set without moving
+    // ones), keeping the moving ones as they are now.
+    void replace_static(BoundaryParticles&& other);
     std::span<const Vec<D>> positions() const { return positions_; }
     std::span<const Real> volumes() const { return volumes_; }
 
@@ -83,6 +100,7 @@ class BoundaryParticles {
     // entries cell_start[c] .. cell_start[c + 1] are the particles in cell c.
     struct Grid {
         Vec<D> origin{0};
+        Cell first{0}; // the first cell held, on the grid from `origin`
         Cell cells{0};
         std::vector<std::uint32_t> cell_start;
         // Per cell, whether it or a cell beside it holds a particle (the
@@ -90,8 +108,10 @@ class BoundaryParticles {
         // and one look here spares them 3^D empty cells.
         std::vector<std::uint8_t> near_any;
     };
-    // Sorts the particles into the static grid; where each of `positions` went.
-    std::vector<std::uint32_t> build_grid(std::vector<Vec<D>> positions);
+    // Sorts the particles into the static grid, laid from the corner of
+    // `whole` (their own box when null); where each of `positions` went.
+    std::vector<std::uint32_t> build_grid(std::vector<Vec<D>> positions,
+                                          const Box<D>* whole = nullptr);
     // Fills grid.near_any from its cells' particles.
     static void mark_near_cells(Grid& grid);
     // Lays `grid` over the bounding box of `points` (not empty); the cell count.
@@ -108,8 +128,9 @@ class BoundaryParticles {
     std::vector<Vec<D>> positions_; // static ones sorted by cell, then moving ones
     std::vector<Real> volumes_;     // m^3 (m^2 in 2D)
     Real h_ = 0;
-    Grid grid_;                      // the static particles, built once
-    std::vector<Vec<D>> velocities_; // m/s, 0 for the static ones
+    Grid grid_;                           // the static particles, built once
+    Box<D> bounds_{Vec<D>(1), Vec<D>(0)}; // the whole static set's box
+    std::vector<Vec<D>> velocities_;      // m/s, 0 for the static ones
     // Moving particles: where they are at rest, their group, and their own
     // grid, its entries indices into positions_.
     std::size_t moving_begin_ = 0;

@@ -2,6 +2,8 @@
 
 #include "sph/boundaries/box_walls.hpp"
 
+#include <limits>
+
 namespace sph {
 
 template <int D>
@@ -15,35 +17,59 @@ BoundaryList<D> make_boundaries(const Params<D>& p) {
     return boundaries;
 }
 
-namespace {
-
-// The static particles: the obstacles' shells, and the domain walls' when
-// they are particles. None when neither exists.
+// The obstacles' shells and the domain walls' particles; with a region,
+// those in it only, on the whole set's grid.
 template <int D>
-std::optional<BoundaryParticles<D>> static_particles(const Params<D>& p) {
+std::optional<BoundaryParticles<D>> make_static_boundary_particles(const Params<D>& p,
+                                                                   const Box<D>* region) {
     const Real lattice_volume = p.mass / p.rest_density;
     BoundarySamples<D> samples = sample_obstacles<D>(p.obstacles, p.spacing, p.h, lattice_volume);
-    if (p.walls == WallModel::particles) {
-        // Not const: returned, it is moved, not copied (the walls of a large
-        // tank are 10-20 MB).
-        auto walls = BoundaryParticles<D>::box_walls(p.domain, p.spacing, p.h, lattice_volume);
-        if (samples.positions.empty())
-            return walls;
-        samples.positions.insert(samples.positions.end(), walls.positions().begin(),
-                                 walls.positions().end());
-        samples.volumes.insert(samples.volumes.end(), walls.volumes().begin(),
-                               walls.volumes().end());
-    } else if (samples.positions.empty()) {
+    if (p.walls != WallModel::particles && samples.positions.empty())
         return std::nullopt;
+    Box<D> whole{Vec<D>(std::numeric_limits<Real>::max()),
+                 Vec<D>(std::numeric_limits<Real>::lowest())};
+    for (const Vec<D>& x : samples.positions) {
+        whole.min = glm::min(whole.min, x);
+        whole.max = glm::max(whole.max, x);
     }
+    std::vector<Vec<D>> walls;
+    if (p.walls == WallModel::particles) {
+        Box<D> bounds;
+        walls = BoundaryParticles<D>::box_wall_sites(p.domain, p.spacing, p.h, region, bounds);
+        whole.min = glm::min(whole.min, bounds.min);
+        whole.max = glm::max(whole.max, bounds.max);
+    }
+    if (region) {
+        std::size_t kept = 0;
+        for (std::size_t b = 0; b < samples.positions.size(); ++b) {
+            const Vec<D>& x = samples.positions[b];
+            if (glm::all(glm::greaterThanEqual(x, region->min)) &&
+                glm::all(glm::lessThanEqual(x, region->max))) {
+                samples.positions[kept] = x;
+                samples.volumes[kept++] = samples.volumes[b];
+            }
+        }
+        samples.positions.resize(kept);
+        samples.volumes.resize(kept);
+    }
+    // (Not const: returned, it is moved, not copied; the walls of a large
+    // tank are 10-20 MB.)
+    if (samples.positions.empty() && !region) {
+        auto only_walls = BoundaryParticles<D>(std::move(walls), p.h, lattice_volume);
+        return only_walls;
+    }
+    samples.positions.insert(samples.positions.end(), walls.begin(), walls.end());
+    samples.volumes.resize(samples.positions.size(), lattice_volume);
+    if (region)
+        return BoundaryParticles<D>(std::move(samples.positions), std::move(samples.volumes), p.h,
+                                    whole);
     return BoundaryParticles<D>(std::move(samples.positions), std::move(samples.volumes), p.h);
 }
 
-} // namespace
-
 template <int D>
-std::optional<BoundaryParticles<D>> make_boundary_particles(const Params<D>& p) {
-    std::optional<BoundaryParticles<D>> boundary = static_particles(p);
+std::optional<BoundaryParticles<D>> make_boundary_particles(const Params<D>& p,
+                                                            const Box<D>* region) {
+    std::optional<BoundaryParticles<D>> boundary = make_static_boundary_particles(p, region);
     if (p.paddles.empty())
         return boundary;
     // The paddles' shells join the set as its moving particles, after the
@@ -59,7 +85,13 @@ std::optional<BoundaryParticles<D>> make_boundary_particles(const Params<D>& p) 
 
 template BoundaryList<2> make_boundaries<2>(const Params<2>&);
 template BoundaryList<3> make_boundaries<3>(const Params<3>&);
-template std::optional<BoundaryParticles<2>> make_boundary_particles<2>(const Params<2>&);
-template std::optional<BoundaryParticles<3>> make_boundary_particles<3>(const Params<3>&);
+template std::optional<BoundaryParticles<2>> make_static_boundary_particles<2>(const Params<2>&,
+                                                                               const Box<2>*);
+template std::optional<BoundaryParticles<3>> make_static_boundary_particles<3>(const Params<3>&,
+                                                                               const Box<3>*);
+template std::optional<BoundaryParticles<2>> make_boundary_particles<2>(const Params<2>&,
+                                                                        const Box<2>*);
+template std::optional<BoundaryParticles<3>> make_boundary_particles<3>(const Params<3>&,
+                                                                        const Box<3>*);
 
 } // namespace sph

@@ -17,8 +17,16 @@ BoundaryList<D> make_boundaries(const Params<D>& params);
 
 // The obstacles' shells, then the domain walls' particles when
 // params.walls asks for them, as static particles; the paddles' shells
-// after them as the moving ones. None when there is none of these.
+// after them as the moving ones. None when there is none of these. With a
+// `region`, only the static particles inside it (a process's over MPI
+// ranks, parallel/rank_partition.cpp), which find the same neighbours in
+// the same order as the whole set for a point whose support lies inside.
 template <int D>
-std::optional<BoundaryParticles<D>> make_boundary_particles(const Params<D>& params);
+std::optional<BoundaryParticles<D>> make_boundary_particles(const Params<D>& params,
+                                                            const Box<D>* region = nullptr);
+// The static particles alone (make_boundary_particles without the paddles).
+template <int D>
+std::optional<BoundaryParticles<D>> make_static_boundary_particles(const Params<D>& params,
+                                                                   const Box<D>* region = nullptr);
 
 } // namespace sph

@@ -8,12 +8,13 @@ namespace sph {
 
 template <int D>
 void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls,
-                                  Real radius) {
+                                  Real radius, const Box<D>* walls_bounds) {
     fluid_count_ = fluid.size();
     resize_with_headroom(positions_, fluid.size() + walls.size());
     std::copy(fluid.begin(), fluid.end(), positions_.begin());
     std::copy(walls.begin(), walls.end(), positions_.begin() + std::ptrdiff_t(fluid.size()));
-    const auto order = grid_.cell_order(positions_, radius);
+    const auto order = walls_bounds ? grid_.cell_order(positions_, radius, *walls_bounds)
+                                    : grid_.cell_order(positions_, radius);
 
     // Each grid cell's fluid and, for a cell with fluid, its neighbourhood.
     const std::size_t grid_cells = grid_.cell_count();

@@ -28,8 +28,11 @@ class CellNeighbourhoods {
   public:
     using Range = typename SortedGrid<D>::Range;
 
-    // Sorts the fluid and wall particles into cells of size `radius` (> 0).
-    void build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls, Real radius);
+    // Sorts the fluid and wall particles into cells of size `radius` (> 0),
+    // on a grid that covers `walls_bounds` too when given (the whole set's
+    // box when `walls` are some of it: BoundaryParticles::static_bounds).
+    void build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls, Real radius,
+               const Box<D>* walls_bounds = nullptr);
 
     std::size_t fluid_count() const { return fluid_count_; }
     // The particle (fluid, then wall) at each sorted position.

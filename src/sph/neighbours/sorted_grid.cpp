@@ -351,6 +351,12 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
         }
     }
 
+    if (within_)
+        for (int a = 0; a < D; ++a)
+            if (within_->min[a] <= within_->max[a]) {
+                lo[a] = std::min(lo[a], within_->min[a]);
+                hi[a] = std::max(hi[a], within_->max[a]);
+            }
     const int key_bits = set_up_grid(lo, hi, radius);
 
     keys_.resize(n);
@@ -603,6 +609,20 @@ std::span<const std::uint32_t> SortedGrid<D>::cell_order(std::span<const Vec<D>>
     } else {
         sort_into_cells(positions, radius);
     }
+    return order_;
+}
+
+template <int D>
+std::span<const std::uint32_t> SortedGrid<D>::cell_order(std::span<const Vec<D>> positions,
+                                                         Real radius, const Box<D>& within) {
+    within_ = &within;
+    try {
+        cell_order(positions, radius);
+    } catch (...) {
+        within_ = nullptr;
+        throw;
+    }
+    within_ = nullptr;
     return order_;
 }
 

@@ -38,6 +38,13 @@ class SortedGrid final : public NeighbourSearch<D> {
     std::span<const std::uint32_t> cell_order(std::span<const Vec<D>> positions,
                                               Real radius) override;
 
+    // cell_order with the grid laid over the box of the positions and
+    // `within` together: the same grid wherever `within` bounds the
+    // positions (over MPI ranks, the whole set of wall particles of which a
+    // rank holds some).
+    std::span<const std::uint32_t> cell_order(std::span<const Vec<D>> positions, Real radius,
+                                              const Box<D>& within);
+
     // Each position's cell key (its cell's Morton code) on the grid that
     // cell_order would lay over positions whose finite bounding box is
     // [lo, hi]: cell_order sorts by these keys, stably. Over MPI ranks each
@@ -107,6 +114,8 @@ class SortedGrid final : public NeighbourSearch<D> {
     std::size_t gather_candidates(std::size_t cell, Real r2, Scratch& s) const;
     void list_neighbours(Real radius, NeighbourList& out);
 
+    // A box the grid covers besides the positions (cell_order's `within`).
+    const Box<D>* within_ = nullptr;
     // The grid of the last call.
     Vec<D> origin_{0};
     Vec<D> inverse_cell_size_{1};

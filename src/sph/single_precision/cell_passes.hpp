@@ -58,7 +58,10 @@ class CellPasses {
     // search. `boundary` may be null.
     void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
                     Real radius) {
-        cells_.build(fluid, boundary ? boundary->positions() : std::span<const Vec<D>>{}, radius);
+        if (boundary)
+            cells_.build(fluid, boundary->positions(), radius, &boundary->static_bounds());
+        else
+            cells_.build(fluid, {}, radius);
     }
 
     // state.density = sum_j m_j W_ij over fluid and wall particles.

@@ -156,22 +156,38 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         const std::size_t n = total_particles();
         // The accelerations a Verlet step reuses are as current as on one
         // process. When they are not (the first step, new particles), the
-        // step computes them before it drifts by them: nothing bounds that
-        // drift beforehand, so every rank's halo holds every particle.
-        const bool current = stepped_ && n == stepped_size_;
+        // step computes them before it drifts by them, and nothing would
+        // bound that drift beforehand: they are computed here first, where
+        // the particles are, over a halo without drift (as a symplectic
+        // Euler step's), the same bits as that first pass of one process.
+        bool current = stepped_ && n == stepped_size_;
         const std::span<std::vector<Real>* const> kept = solver.kept_arrays();
         if (kept_owned_.size() != kept.size()) {
             kept_owned_.assign(kept.size(), {});
             kept_mask_ = 0;
         }
+        auto* explicit_solver = dynamic_cast<ExplicitSolver<D>*>(&solver);
+        if (params.integrator == Integrator::verlet && !current && explicit_solver) {
+            {
+                auto timed = context.time(Stage::rank_halo);
+                gather_halo(params, 0, state, kept, false);
+                plan_halo();
+                cover_walls(params);
+            }
+            context.halo = this;
+            explicit_solver->refresh_accelerations(params, local_, context);
+            context.halo = nullptr;
+            for (std::size_t i = 0; i < state.size(); ++i)
+                state.acceleration[i] = local_.acceleration[owned_offset_ + i];
+            current = true;
+        }
         {
             auto timed = context.time(Stage::rank_halo);
-            gather_halo(params, dt, state, kept,
-                        params.integrator == Integrator::verlet && !current);
+            gather_halo(params, dt, state, kept, false);
             plan_halo();
             cover_walls(params);
         }
-        if (auto* explicit_solver = dynamic_cast<ExplicitSolver<D>*>(&solver))
+        if (explicit_solver)
             explicit_solver->set_accelerations_current(current, local_.size());
         const auto start = std::chrono::steady_clock::now();
         // A rank that owns nothing (fewer particles than ranks) steps an
@@ -547,6 +563,9 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             {"rebalances", rebalances_},
             {"most_ranks_visited", most_visited_},
             {"steps_with_an_empty_rank", steps_with_empty_rank_},
+            // Halos that held every particle (a step whose reach is not
+            // finite): none in a sound run.
+            {"whole_halos", whole_halos_},
         };
     }
 
@@ -767,6 +786,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         const Real reach =
             Real(hops_ + (whole_cells_ ? 1 : 0)) * (params.h * (1 + 1e-5) + 2 * move) * (1 + 1e-6);
         everyone = everyone || !(reach > 0) || !std::isfinite(reach);
+        whole_halos_ += everyone ? 1 : 0;
         trim_rows_ = hops_ == 1 && !whole_cells_ && !everyone;
         // This rank's box: its owned finite positions.
         Vec<D> lo(std::numeric_limits<Real>::max()), hi(-std::numeric_limits<Real>::max());
@@ -1394,6 +1414,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
     typename Partition<D>::WallCover cover_;
     Real move_ = 0; // the last halo's Verlet drift allowance
     std::size_t walls_held_here_ = 0;
+    std::uint64_t whole_halos_ = 0;
     // Balance and traffic, for run.json (rank 0).
     std::vector<double> gathered_figures_;
     std::vector<std::uint64_t> last_local_, last_owned_, last_walls_;

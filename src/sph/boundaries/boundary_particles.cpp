@@ -244,11 +244,10 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, Real h, R
 }
 
 template <int D>
-BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes,
-                                        Real h)
-    : h_(h) {
+void BoundaryParticles<D>::take_static(std::vector<Vec<D>> positions, std::vector<Real> volumes,
+                                       const Box<D>* whole) {
     SPHCLIP_ASSERT(positions.size() == volumes.size());
-    const std::vector<std::uint32_t> destination = build_grid(std::move(positions));
+    const std::vector<std::uint32_t> destination = build_grid(std::move(positions), whole);
     volumes_.resize(volumes.size());
     for (std::size_t b = 0; b < volumes.size(); ++b)
         volumes_[destination[b]] = volumes[b];
@@ -258,15 +257,16 @@ BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vect
 
 template <int D>
 BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes,
+                                        Real h)
+    : h_(h) {
+    take_static(std::move(positions), std::move(volumes), nullptr);
+}
+
+template <int D>
+BoundaryParticles<D>::BoundaryParticles(std::vector<Vec<D>> positions, std::vector<Real> volumes,
                                         Real h, const Box<D>& whole)
     : h_(h) {
-    SPHCLIP_ASSERT(positions.size() == volumes.size());
-    const std::vector<std::uint32_t> destination = build_grid(std::move(positions), &whole);
-    volumes_.resize(volumes.size());
-    for (std::size_t b = 0; b < volumes.size(); ++b)
-        volumes_[destination[b]] = volumes[b];
-    moving_begin_ = positions_.size();
-    velocities_.assign(positions_.size(), Vec<D>(0));
+    take_static(std::move(positions), std::move(volumes), &whole);
 }
 
 template <int D>

@@ -112,6 +112,9 @@ class BoundaryParticles {
     // `whole` (their own box when null); where each of `positions` went.
     std::vector<std::uint32_t> build_grid(std::vector<Vec<D>> positions,
                                           const Box<D>* whole = nullptr);
+    // The static particles at `positions`, each filling volumes[b], on the
+    // grid of `whole` (their own box when null).
+    void take_static(std::vector<Vec<D>> positions, std::vector<Real> volumes, const Box<D>* whole);
     // Fills grid.near_any from its cells' particles.
     static void mark_near_cells(Grid& grid);
     // Lays `grid` over the bounding box of `points` (not empty); the cell count.

@@ -68,6 +68,15 @@ class ExplicitSolver : public Solver<D> {
         accelerations_for_ = size;
     }
 
+    // What a Verlet step whose accelerations are not current does first:
+    // the accelerations at the current state, then current. A partition
+    // calls it over a halo of its own before the step, so that the step's
+    // drift is bounded by them as any other step's is.
+    void refresh_accelerations(const Params<D>& params, State<D>& state, StepContext<D>& context) {
+        compute_accelerations(params, state, context);
+        set_accelerations_current(true, state.size());
+    }
+
   protected:
     // state.acceleration = every force of the model at the current state.
     virtual void compute_accelerations(const Params<D>& params, State<D>& state,

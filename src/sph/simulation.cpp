@@ -48,7 +48,10 @@ std::size_t Simulation<D>::cover_walls(const Box<D>& needed) {
         region.max[a] = needed.max[a] + margin;
     }
     if (!inside || oversized) {
-        std::optional<BoundaryParticles<D>> laid = make_static_boundary_particles(params_, &region);
+        if (!obstacle_shells_)
+            obstacle_shells_ = obstacle_shells(params_);
+        std::optional<BoundaryParticles<D>> laid =
+            make_static_boundary_particles(params_, &region, &*obstacle_shells_);
         if (laid)
             boundary_->replace_static(std::move(*laid));
         walls_held_ = region;

@@ -148,6 +148,9 @@ class Simulation {
     // holds (none yet: empty).
     Box<D> walls_held_{Vec<D>(1), Vec<D>(0)};
     std::optional<BoundaryParticles<D>> boundary_;
+    // Over processes: the obstacles' shells, sampled once, from which each
+    // new box's are taken.
+    std::optional<BoundarySamples<D>> obstacle_shells_;
     NeighbourList neighbours_;
     NeighbourList boundary_neighbours_;
     StepCounters counters_;

@@ -17,18 +17,28 @@ BoundaryList<D> make_boundaries(const Params<D>& p) {
     return boundaries;
 }
 
+template <int D>
+BoundarySamples<D> obstacle_shells(const Params<D>& p) {
+    return sample_obstacles<D>(p.obstacles, p.spacing, p.h, p.mass / p.rest_density);
+}
+
 // The obstacles' shells and the domain walls' particles; with a region,
 // those in it only, on the whole set's grid.
 template <int D>
-std::optional<BoundaryParticles<D>> make_static_boundary_particles(const Params<D>& p,
-                                                                   const Box<D>* region) {
+std::optional<BoundaryParticles<D>>
+make_static_boundary_particles(const Params<D>& p, const Box<D>* region,
+                               const BoundarySamples<D>* shells) {
     const Real lattice_volume = p.mass / p.rest_density;
-    BoundarySamples<D> samples = sample_obstacles<D>(p.obstacles, p.spacing, p.h, lattice_volume);
-    if (p.walls != WallModel::particles && samples.positions.empty())
+    BoundarySamples<D> samples;
+    if (!shells) {
+        samples = obstacle_shells(p);
+        shells = &samples;
+    }
+    if (p.walls != WallModel::particles && shells->positions.empty())
         return std::nullopt;
     Box<D> whole{Vec<D>(std::numeric_limits<Real>::max()),
                  Vec<D>(std::numeric_limits<Real>::lowest())};
-    for (const Vec<D>& x : samples.positions) {
+    for (const Vec<D>& x : shells->positions) {
         whole.min = glm::min(whole.min, x);
         whole.max = glm::max(whole.max, x);
     }
@@ -40,17 +50,18 @@ std::optional<BoundaryParticles<D>> make_static_boundary_particles(const Params<
         whole.max = glm::max(whole.max, bounds.max);
     }
     if (region) {
-        std::size_t kept = 0;
-        for (std::size_t b = 0; b < samples.positions.size(); ++b) {
-            const Vec<D>& x = samples.positions[b];
+        BoundarySamples<D> kept;
+        for (std::size_t b = 0; b < shells->positions.size(); ++b) {
+            const Vec<D>& x = shells->positions[b];
             if (glm::all(glm::greaterThanEqual(x, region->min)) &&
                 glm::all(glm::lessThanEqual(x, region->max))) {
-                samples.positions[kept] = x;
-                samples.volumes[kept++] = samples.volumes[b];
+                kept.positions.push_back(x);
+                kept.volumes.push_back(shells->volumes[b]);
             }
         }
-        samples.positions.resize(kept);
-        samples.volumes.resize(kept);
+        samples = std::move(kept);
+    } else if (shells != &samples) {
+        samples = *shells;
     }
     // (Not const: returned, it is moved, not copied; the walls of a large
     // tank are 10-20 MB.)
@@ -85,10 +96,12 @@ std::optional<BoundaryParticles<D>> make_boundary_particles(const Params<D>& p,
 
 template BoundaryList<2> make_boundaries<2>(const Params<2>&);
 template BoundaryList<3> make_boundaries<3>(const Params<3>&);
-template std::optional<BoundaryParticles<2>> make_static_boundary_particles<2>(const Params<2>&,
-                                                                               const Box<2>*);
-template std::optional<BoundaryParticles<3>> make_static_boundary_particles<3>(const Params<3>&,
-                                                                               const Box<3>*);
+template BoundarySamples<2> obstacle_shells<2>(const Params<2>&);
+template BoundarySamples<3> obstacle_shells<3>(const Params<3>&);
+template std::optional<BoundaryParticles<2>>
+make_static_boundary_particles<2>(const Params<2>&, const Box<2>*, const BoundarySamples<2>*);
+template std::optional<BoundaryParticles<3>>
+make_static_boundary_particles<3>(const Params<3>&, const Box<3>*, const BoundarySamples<3>*);
 template std::optional<BoundaryParticles<2>> make_boundary_particles<2>(const Params<2>&,
                                                                         const Box<2>*);
 template std::optional<BoundaryParticles<3>> make_boundary_particles<3>(const Params<3>&,

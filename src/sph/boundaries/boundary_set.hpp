@@ -24,9 +24,16 @@ BoundaryList<D> make_boundaries(const Params<D>& params);
 template <int D>
 std::optional<BoundaryParticles<D>> make_boundary_particles(const Params<D>& params,
                                                             const Box<D>* region = nullptr);
-// The static particles alone (make_boundary_particles without the paddles).
+// The obstacles' shells, sampled (sph/boundaries/obstacles.hpp).
 template <int D>
-std::optional<BoundaryParticles<D>> make_static_boundary_particles(const Params<D>& params,
-                                                                   const Box<D>* region = nullptr);
+BoundarySamples<D> obstacle_shells(const Params<D>& params);
+
+// The static particles alone (make_boundary_particles without the paddles);
+// the obstacles' `shells` when sampled already (laid again by region over
+// MPI ranks, a mesh is not sampled again each time).
+template <int D>
+std::optional<BoundaryParticles<D>>
+make_static_boundary_particles(const Params<D>& params, const Box<D>* region = nullptr,
+                               const BoundarySamples<D>* shells = nullptr);
 
 } // namespace sph

@@ -168,12 +168,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         }
         auto* explicit_solver = dynamic_cast<ExplicitSolver<D>*>(&solver);
         if (params.integrator == Integrator::verlet && !current && explicit_solver) {
-            {
-                auto timed = context.time(Stage::rank_halo);
-                gather_halo(params, 0, state, kept, false);
-                plan_halo();
-                cover_walls(params);
-            }
+            choose_halo(params, 0, state, kept, context);
             context.halo = this;
             explicit_solver->refresh_accelerations(params, local_, context);
             context.halo = nullptr;
@@ -181,12 +176,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
                 state.acceleration[i] = local_.acceleration[owned_offset_ + i];
             current = true;
         }
-        {
-            auto timed = context.time(Stage::rank_halo);
-            gather_halo(params, dt, state, kept, false);
-            plan_halo();
-            cover_walls(params);
-        }
+        choose_halo(params, dt, state, kept, context);
         if (explicit_solver)
             explicit_solver->set_accelerations_current(current, local_.size());
         const auto start = std::chrono::steady_clock::now();
@@ -347,12 +337,7 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
 
     void update_fields(Solver<D>& solver, const Params<D>& params, State<D>& state,
                        StepContext<D>& context) override {
-        {
-            auto timed = context.time(Stage::rank_halo);
-            gather_halo(params, 0, state, {}, false);
-            plan_halo();
-            cover_walls(params);
-        }
+        choose_halo(params, 0, state, {}, context);
         context.halo = this;
         solver.update_fields(params, local_, context);
         context.halo = nullptr;
@@ -735,11 +720,6 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         set_cut(std::move(first));
     }
 
-    // The step's particles (local_): the owned ones and, from the other
-    // ranks, those within the halo's reach of one, in the memory order of
-    // the whole simulation (local_index_: their places in it). Each rank
-    // sends every rank the owned particles inside its box grown by the
-    // reach (candidates); each keeps those in cells near its own particles.
     // The box within which the step may look for boundary particles: a
     // support radius (and a Verlet step's drift) around every particle this
     // rank holds, owned or halo; for the float passes, which read every
@@ -758,8 +738,23 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         walls_held_here_ = cover_(Box<D>{lo - margin, hi + margin});
     }
 
+    // The halo a pass needs (gather_halo with dt, then the requests and
+    // the walls around it), timed as the rank halo stage.
+    void choose_halo(const Params<D>& params, Real dt, const State<D>& state,
+                     std::span<std::vector<Real>* const> kept, StepContext<D>& context) {
+        auto timed = context.time(Stage::rank_halo);
+        gather_halo(params, dt, state, kept);
+        plan_halo();
+        cover_walls(params);
+    }
+
+    // The step's particles (local_): the owned ones and, from the other
+    // ranks, those within the halo's reach of one, in the memory order of
+    // the whole simulation (local_index_: their places in it). Each rank
+    // sends every rank the owned particles inside its box grown by the
+    // reach (candidates); each keeps those in cells near its own particles.
     void gather_halo(const Params<D>& params, Real dt, const State<D>& state,
-                     std::span<std::vector<Real>* const> kept, bool everyone) {
+                     std::span<std::vector<Real>* const> kept) {
         const auto p = std::size_t(ranks_);
         const auto me = std::size_t(rank_);
         const std::size_t m = state.size();
@@ -785,7 +780,8 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         // cells within `hops` cells of an owned one's, so one cell further.
         const Real reach =
             Real(hops_ + (whole_cells_ ? 1 : 0)) * (params.h * (1 + 1e-5) + 2 * move) * (1 + 1e-6);
-        everyone = everyone || !(reach > 0) || !std::isfinite(reach);
+        // A reach that is not finite (speeds blown up): every particle.
+        const bool everyone = !(reach > 0) || !std::isfinite(reach);
         whole_halos_ += everyone ? 1 : 0;
         trim_rows_ = hops_ == 1 && !whole_cells_ && !everyone;
         // This rank's box: its owned finite positions.

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 #include <functional>
 #include <map>
+#include <thread>
 
 using sph::parallel::ThreadCountTuner;
 
@@ -126,4 +127,65 @@ TEST_CASE("the tuner tries only the counts on its ladder and never more than the
             total += use.steps;
         CHECK(total == 40000);
     }
+}
+
+TEST_CASE("with the kernel's count of free cores a busy machine costs no tries", "[parallel]") {
+    // 2 threads at 0.3x of 1 while one other process runs.
+    bool busy = true;
+    const auto cost = [&](int t, int) {
+        return busy && t == 2 ? one_thread / 0.3 : one_thread / (t == 2 ? 1.7 : 1);
+    };
+    int asked = 0;
+    // The model kernel: one core taken by the other process while busy.
+    ThreadCountTuner tuner(2, [&](int own) {
+        ++asked;
+        CHECK(own >= 1);
+        return busy ? 1 : 2;
+    });
+    SECTION("busy from the start: one thread from the first step, 2 never tried") {
+        CHECK(tuner.first_threads() == 1);
+        const auto steps = run(tuner, 40000, cost);
+        CHECK(steps.count(2) == 0);
+        CHECK(tuner.threads() == 1);
+        CHECK(tuner.tries_skipped() > 5);
+        // ... and when the other process ends, 2 threads come back.
+        busy = false;
+        const int skipped = tuner.tries_skipped();
+        run(tuner, 5000, cost, 40000);
+        CHECK(tuner.threads() == 2);
+        CHECK(tuner.tries_skipped() == skipped);
+    }
+    SECTION("a count that says the cores are free is still measured") {
+        busy = false;
+        ThreadCountTuner fooled(2, [](int) { return 2; });
+        CHECK(fooled.first_threads() == 2);
+        // The other process the count missed: 2 threads lose, 1 is kept.
+        busy = true;
+        const auto steps =
+            run(fooled, 40000, [](int t, int) { return t == 2 ? one_thread / 0.3 : one_thread; });
+        CHECK(fooled.threads() == 1);
+        CHECK(double(steps.at(2)) / double(steps.at(1)) < 0.05);
+    }
+    CHECK(asked >= 1);
+}
+
+TEST_CASE("a kernel count that is unknown leaves the tuner measuring", "[parallel]") {
+    ThreadCountTuner tuner(2, [](int) { return -1; });
+    CHECK(tuner.first_threads() == 2);
+    const auto steps =
+        run(tuner, 40000, [](int t, int) { return t == 2 ? one_thread / 0.3 : one_thread; });
+    CHECK(tuner.threads() == 1);
+    CHECK(tuner.tries_skipped() == 0);
+    CHECK(steps.at(2) > 0);
+}
+
+TEST_CASE("this machine's free cores are known or plainly not", "[parallel]") {
+    const auto free = sph::parallel::free_cores_of_this_machine();
+    if (!free)
+        return; // a cpuset or CPU quota: the tuner measures alone
+    const int cores = int(std::thread::hardware_concurrency());
+    const int count = free(1);
+    CHECK(count >= 0);
+    CHECK(count <= cores);
+    CHECK(sph::parallel::runnable_threads() >= 1); // this thread at least
 }

@@ -192,8 +192,11 @@ class ClipRun {
         sim_.set_output_fields(fields_);
         // No --threads: the count is measured as the run goes. Over MPI ranks
         // each rank keeps all its cores (the ranks step in lockstep).
-        if (options_.threads == 0 && parallel::size() == 1 && omp_get_max_threads() > 1)
-            tuner_.emplace(omp_get_max_threads());
+        if (options_.threads == 0 && parallel::size() == 1 && omp_get_max_threads() > 1) {
+            auto free_cores = parallel::free_cores_of_this_machine();
+            free_cores_known_ = bool(free_cores);
+            tuner_.emplace(omp_get_max_threads(), std::move(free_cores));
+        }
         if (!leader_)
             return;
         record_.path = folder_ / "run.json";
@@ -715,6 +718,11 @@ class ClipRun {
             limits[std::string(time_step_limit_names[k])] = sim_.time_step_limits()[k];
         record_.document["time_step_limits"] = limits;
         record_.document["thread_counts"] = thread_counts_json();
+        if (tuner_)
+            record_.document["thread_tuning"] = {{"free_cores_known", free_cores_known_},
+                                                 {"first_threads", tuner_->first_threads()},
+                                                 {"changes", tuner_->changes()},
+                                                 {"tries_skipped", tuner_->tries_skipped()}};
         record_.document["timings"] = {{"total",
                                         {{"simulate_s", simulate_total},
                                          {"render_s", total.render_s},
@@ -762,6 +770,7 @@ class ClipRun {
     const Derived derived_;
     Simulation<D> sim_;
     std::optional<parallel::ThreadCountTuner> tuner_; // none: a fixed thread count
+    bool free_cores_known_ = false; // the tuner had the kernel's count of busy cores
     const std::uint64_t frames_;
     std::vector<std::unique_ptr<FrameSink>> sinks_;
     RenderSink* render_ = nullptr; // in sinks_, when frames are drawn

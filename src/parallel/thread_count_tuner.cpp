@@ -1,20 +1,28 @@
 #include "parallel/thread_count_tuner.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace sph::parallel {
 
-ThreadCountTuner::ThreadCountTuner(int max_threads, Settings settings) : settings_(settings) {
+ThreadCountTuner::ThreadCountTuner(int max_threads, Settings settings, FreeCores free_cores)
+    : settings_(settings), free_cores_(std::move(free_cores)) {
     for (int t = std::max(max_threads, 1);; t /= 2) {
         ladder_.push_back(t);
         if (t == 1)
             break;
     }
+    // Only this thread of ours runs yet: start on the cores left free.
+    if (free_cores_)
+        if (const int free = free_cores_(1); free >= 0)
+            while (first_ + 1 < int(ladder_.size()) && ladder_[first_] > std::max(free, 1))
+                ++first_;
+    active_ = kept_ = first_;
     steps_.assign(ladder_.size(), 0);
     seconds_.assign(ladder_.size(), 0);
     interval_ = settings_.first_interval;
-    // The first window, at max, is followed by a try: a machine busy from
-    // the start is found after two windows.
+    // The first window is followed by a try: a machine busy from the start
+    // that the kernel's count did not show is found after two windows.
     windows_since_try_ = interval_;
 }
 
@@ -67,8 +75,19 @@ void ThreadCountTuner::end_window(double cost) {
     if (index < 0 || index >= int(ladder_.size()))
         index = kept_ - next_direction_;
     next_direction_ = -next_direction_;
-    if (index >= 0 && index < int(ladder_.size()) && index != kept_)
-        start_try(index);
+    if (index < 0 || index >= int(ladder_.size()) || index == kept_)
+        return;
+    // More threads than the cores other work leaves free would wait for
+    // them: ask again after as many windows, without measuring.
+    if (ladder_[index] > ladder_[kept_] && free_cores_) {
+        const int free = free_cores_(ladder_[kept_]);
+        if (free >= 0 && free < ladder_[index]) {
+            ++tries_skipped_;
+            windows_since_try_ = 0;
+            return;
+        }
+    }
+    start_try(index);
 }
 
 void ThreadCountTuner::start_try(int index) {

@@ -19,6 +19,14 @@
 // (a competing job started) makes the next window a try, once at least
 // first_interval windows have passed since the last try. A try that is
 // plainly losing ends after a quarter of its window.
+//
+// Where the kernel's count of runnable threads describes this process's
+// cores (parallel/free_cores.hpp), the tuner asks it first: the run starts
+// with no more threads than there are free cores, and a try of more threads
+// waits while the cores it would need are busy, so a machine busy from the
+// start or for a long while costs no tries at all.
+
+#include "parallel/free_cores.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -43,9 +51,11 @@ class ThreadCountTuner {
         double abort_slowdown = 1.5;
     };
 
-    // max_threads >= 1: the most threads a step may use.
-    explicit ThreadCountTuner(int max_threads) : ThreadCountTuner(max_threads, Settings{}) {}
-    ThreadCountTuner(int max_threads, Settings settings);
+    // max_threads >= 1: the most threads a step may use. free_cores, where
+    // given, says how many cores other processes leave free (-1: unknown).
+    explicit ThreadCountTuner(int max_threads, FreeCores free_cores = {})
+        : ThreadCountTuner(max_threads, Settings{}, std::move(free_cores)) {}
+    ThreadCountTuner(int max_threads, Settings settings, FreeCores free_cores = {});
 
     // The thread count for the next step.
     int threads() const { return ladder_[active_]; }
@@ -71,6 +81,10 @@ class ThreadCountTuner {
     std::vector<Use> uses() const;
     // Times the count in use changed.
     int changes() const { return changes_; }
+    // Tries of more threads not made because the kernel counted their cores busy.
+    int tries_skipped() const { return tries_skipped_; }
+    // The count the run started with, below the most where cores were busy.
+    int first_threads() const { return ladder_[first_]; }
 
   private:
     // The window just measured: its cost per particle-step, at ladder_[active_].
@@ -78,6 +92,7 @@ class ThreadCountTuner {
     void start_try(int index);
 
     Settings settings_;
+    FreeCores free_cores_;             // empty: the kernel's count is not ours
     std::vector<int> ladder_;          // max, max/2, ..., 1
     std::vector<std::uint64_t> steps_; // per ladder entry
     std::vector<double> seconds_;      // per ladder entry
@@ -91,6 +106,8 @@ class ThreadCountTuner {
     double window_seconds_ = 0;        // the window under way
     std::uint64_t window_particle_steps_ = 0;
     int changes_ = 0;
+    int tries_skipped_ = 0;
+    int first_ = 0; // ladder index of the first step
     bool first_window_ = true;
 };
 

@@ -153,7 +153,8 @@ std::vector<Override> with_config(std::vector<Override> o, const Config& c) {
 }
 
 // threads 0: `sphclip run`'s default, the count chosen as the run goes
-// (parallel/thread_count_tuner.hpp), from all cores.
+// (parallel/thread_count_tuner.hpp), from all cores or the cores the
+// kernel counts free.
 template <int D>
 Sample time_steps(const Scene& scene, const State<D>& start, int threads, int steps) {
     const int cores = int(std::thread::hardware_concurrency());
@@ -166,7 +167,7 @@ Sample time_steps(const Scene& scene, const State<D>& start, int threads, int st
     const SolveWork solves_before = sim.solve_work();
     std::optional<parallel::ThreadCountTuner> tuner;
     if (threads == 0)
-        tuner.emplace(cores);
+        tuner.emplace(cores, parallel::free_cores_of_this_machine());
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < steps; ++k) {
         if (!tuner) {

@@ -143,6 +143,7 @@ TEST_CASE("with the kernel's count of free cores a busy machine costs no tries",
         return busy ? 1 : 2;
     });
     SECTION("busy from the start: one thread from the first step, 2 never tried") {
+        CHECK(tuner.free_cores_known());
         CHECK(tuner.first_threads() == 1);
         const auto steps = run(tuner, 40000, cost);
         CHECK(steps.count(2) == 0);
@@ -172,6 +173,7 @@ TEST_CASE("with the kernel's count of free cores a busy machine costs no tries",
 TEST_CASE("a kernel count that is unknown leaves the tuner measuring", "[parallel]") {
     ThreadCountTuner tuner(2, [](int) { return -1; });
     CHECK(tuner.first_threads() == 2);
+    CHECK(!ThreadCountTuner(2).free_cores_known());
     const auto steps =
         run(tuner, 40000, [](int t, int) { return t == 2 ? one_thread / 0.3 : one_thread; });
     CHECK(tuner.threads() == 1);

@@ -192,11 +192,8 @@ class ClipRun {
         sim_.set_output_fields(fields_);
         // No --threads: the count is measured as the run goes. Over MPI ranks
         // each rank keeps all its cores (the ranks step in lockstep).
-        if (options_.threads == 0 && parallel::size() == 1 && omp_get_max_threads() > 1) {
-            auto free_cores = parallel::free_cores_of_this_machine();
-            free_cores_known_ = bool(free_cores);
-            tuner_.emplace(omp_get_max_threads(), std::move(free_cores));
-        }
+        if (options_.threads == 0 && parallel::size() == 1 && omp_get_max_threads() > 1)
+            tuner_.emplace(omp_get_max_threads(), parallel::free_cores_of_this_machine());
         if (!leader_)
             return;
         record_.path = folder_ / "run.json";
@@ -719,7 +716,7 @@ class ClipRun {
         record_.document["time_step_limits"] = limits;
         record_.document["thread_counts"] = thread_counts_json();
         if (tuner_)
-            record_.document["thread_tuning"] = {{"free_cores_known", free_cores_known_},
+            record_.document["thread_tuning"] = {{"free_cores_known", tuner_->free_cores_known()},
                                                  {"first_threads", tuner_->first_threads()},
                                                  {"changes", tuner_->changes()},
                                                  {"tries_skipped", tuner_->tries_skipped()}};
@@ -770,7 +767,6 @@ class ClipRun {
     const Derived derived_;
     Simulation<D> sim_;
     std::optional<parallel::ThreadCountTuner> tuner_; // none: a fixed thread count
-    bool free_cores_known_ = false; // the tuner had the kernel's count of busy cores
     const std::uint64_t frames_;
     std::vector<std::unique_ptr<FrameSink>> sinks_;
     RenderSink* render_ = nullptr; // in sinks_, when frames are drawn

@@ -85,6 +85,8 @@ class ThreadCountTuner {
     int tries_skipped() const { return tries_skipped_; }
     // The count the run started with, below the most where cores were busy.
     int first_threads() const { return ladder_[first_]; }
+    // Whether the kernel's count of free cores was given to the tuner.
+    bool free_cores_known() const { return bool(free_cores_); }
 
   private:
     // The window just measured: its cost per particle-step, at ladder_[active_].

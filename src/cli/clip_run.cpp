@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -715,6 +716,7 @@ class ClipRun {
             limits[std::string(time_step_limit_names[k])] = sim_.time_step_limits()[k];
         record_.document["time_step_limits"] = limits;
         record_.document["thread_counts"] = thread_counts_json();
+        record_.document["wait_policy"] = wait_policy_json();
         if (tuner_)
             record_.document["thread_tuning"] = {{"free_cores_known", tuner_->free_cores_known()},
                                                  {"first_threads", tuner_->first_threads()},
@@ -757,6 +759,18 @@ class ClipRun {
                               {"seconds", use.seconds},
                               {"chosen_by", "measurement"}});
         return counts;
+    }
+
+    // run.json "wait_policy": how idle OpenMP threads waited, the
+    // environment libgomp read (sphclip's GOMP_SPINCOUNT unless the user set
+    // a policy; cli/wait_policy.hpp).
+    static json wait_policy_json() {
+        const auto variable = [](const char* name) {
+            const char* value = std::getenv(name);
+            return value ? json(value) : json(nullptr);
+        };
+        return {{"GOMP_SPINCOUNT", variable("GOMP_SPINCOUNT")},
+                {"OMP_WAIT_POLICY", variable("OMP_WAIT_POLICY")}};
     }
 
     const bool leader_ = parallel::leader(); // rank 0, or the only process

@@ -10,6 +10,15 @@
 // neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT, sphclip sets GOMP_SPINCOUNT to
 // `default_spin_count` and starts itself again, once, with the same
 // arguments, before anything else happens. A policy the user sets is kept.
+//
+// Starting again loads the program's 160 shared libraries a second time
+// (0.2 s here). Tried and dropped (2026-12-05): setting the variable from the
+// program's .preinit_array (libc's initialiser, which runs after it, resets
+// the environment) and from the initialiser of a small shared library of our
+// own (the loader initialises libgomp early, as a dependency of libsoxr and
+// others, before any library the program itself names). tests/
+// test_run_json.cpp checks through libgomp's own report (OMP_DISPLAY_ENV)
+// that the spin count is in force.
 
 namespace sph {
 

@@ -11,16 +11,26 @@
 #include <optional>
 #include <span>
 
-// Notation. With g_ij = m grad W_ij (fluid pairs) and w_ib = rho0 V_b grad W_ib
-// (wall pairs), the rate of compression is
-//   D rho_i / Dt = sum_j g_ij . (v_i - v_j) + sum_b w_ib . (v_i - v_b)
-// (v_b = 0 but on a paddle, sph/boundaries/paddles.hpp; Bender & Koschier 2017, eq. 9's
-// source with Akinci's boundary term, as SPlisHSPlasH's TimeStepDFSPH)
-// and a velocity correction with per-particle stiffness s
-//   dv_i = - sum_j (s_i + s_j) g_ij - sum_b s_i w_ib
-// is the symmetric pressure force with p_i / rho_i^2 = s_i / dt. Taking every
-// s_j but s_i as zero, the correction changes D rho_i / Dt by -s_i S_i with
-//   S_i = |sum_j g_ij + sum_b w_ib|^2 + sum_j |g_ij|^2,
+// Notation. With g_ij = m grad W_ij (fluid pairs), w_ib = rho0 V_b grad W_ib
+// (wall pairs) and W_i = sum_b w_ib, a wall particle is the mirror image
+// of the fluid particle beside it (a ghost): it has the particle's pressure,
+// p_b = p_i, and the mirror image of its velocity about the wall's,
+// 2 v_b - v_i. So the rate of compression is
+//   D rho_i / Dt = sum_j g_ij . (v_i - v_j) + 2 sum_b w_ib . (v_i - v_b)
+// (v_b = 0 but on a paddle, sph/boundaries/paddles.hpp; Bender & Koschier
+// 2017, eq. 9's source with the walls' term) and a velocity correction with
+// per-particle stiffness s
+//   dv_i = - sum_j (s_i + s_j) g_ij - 2 s_i W_i
+// is the symmetric pressure force with p_i / rho_i^2 = s_i / dt. Written
+// D rho / Dt = J v, the correction is dv = -J^T s: the solves are
+// orthogonal projections, which take compression out of the velocities
+// and never add kinetic energy. With the walls mirrored in the force but
+// counted once in the rate (Akinci's term, as SPlisHSPlasH has it, until
+// 2026-12-05) the correction was not J's transpose, and a deep 3D tank at
+// rest blew up within 0.02 s at any step size or tolerance
+// (docs/validation.md, "A deep 3D water tank"). Taking every s_j but s_i as
+// zero, the correction changes D rho_i / Dt by -s_i S_i with
+//   S_i = |sum_j g_ij + 2 W_i|^2 + sum_j |g_ij|^2,
 // so s_i = (D rho_i / Dt) / S_i removes the divergence, and
 // s_i = (rho*_i - rho0) / (dt S_i) the predicted compression
 // (Bender & Koschier 2017, sec. 3-4, with the density folded into s).
@@ -30,6 +40,9 @@ namespace sph {
 
 namespace {
 constexpr Real jacobi_relaxation = 0.5;
+// A wall particle counts twice beside a fluid particle, in the force and in
+// the rate alike: it mirrors the particle's pressure and velocity (above).
+constexpr Real wall_mirror = 2;
 } // namespace
 
 template <int D>
@@ -100,9 +113,9 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                     return glm::dot(wall_gradient[e], wall_velocity[b]);
                 });
         }
-        // The walls push with twice the particle's stiffness (pressure
-        // mirroring, see correct_velocities), so S_i = (G_f + G_w) . (G_f + 2 G_w) + sum |g|^2.
-        const Real S = glm::dot(sum + walls_sum, sum + Real(2) * walls_sum) + sum_squares;
+        // S_i = |G_f + 2 G_w|^2 + sum |g|^2 (the walls mirrored, above).
+        const Vec<D> G = sum + wall_mirror * walls_sum;
+        const Real S = glm::dot(G, G) + sum_squares;
         factor_[i] = S > tiny ? 1 / S : 0;
     }
 }
@@ -169,11 +182,11 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
             for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
                 rate += glm::dot(gradient[e], state.velocity[i] - state.velocity[pairs.index[e]]);
             if (walls)
-                rate += sum_over_pairs(*walls, i, [&](std::size_t e, std::uint32_t) {
+                rate += wall_mirror * sum_over_pairs(*walls, i, [&](std::size_t e, std::uint32_t) {
                     return glm::dot(wall_gradient[e], state.velocity[i]);
                 });
             if (!wall_motion_.empty())
-                rate -= wall_motion_[i];
+                rate -= wall_mirror * wall_motion_[i];
             source_[i] = target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
         }
         // The residual of a pressure that must stay >= 0: compression
@@ -228,7 +241,7 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
     return iterations;
 }
 
-// dv_i = - sum_j (s_i + s_j) g_ij - sum_b (s_i + s_i) w_ib with s = stiffness_:
+// dv_i = - sum_j (s_i + s_j) g_ij - sum_b 2 s_i w_ib with s = stiffness_:
 // a wall particle takes the stiffness (the pressure) of the fluid particle
 // beside it, so the walls, several layers of fluid-like particles, hold the
 // fluid up as the fluid below would (a single-sided s_i, as for Akinci's one
@@ -249,7 +262,7 @@ void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>&
             dv -= (s_i + stiffness[pairs.index[e]]) * gradient[e];
         if (walls)
             dv -= sum_over_pairs(*walls, i, [&](std::size_t e, std::uint32_t) {
-                return (s_i + s_i) * wall_gradient[e];
+                return wall_mirror * s_i * wall_gradient[e];
             });
         state.velocity[i] += dv;
     }

@@ -231,7 +231,7 @@ TEST_CASE("output folder: the filesystem's root is refused as an output folder, 
     std::string program = SPHCLIP_EXE, as_user;
     if (::geteuid() == 0) {
         program = (tmp / "sphclip").string();
-        fs::copy_file(SPHCLIP_EXE, program);
+        fs::copy_file(SPHCLIP_PROGRAM, program); // the program proper: a launcher alone finds none
         fs::permissions(tmp.path(), fs::perms::all);
         fs::permissions(tmp / "scene.json", fs::perms::owner_all | fs::perms::others_read);
         as_user = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
@@ -264,7 +264,7 @@ TEST_CASE("output folder: a frames/ the run cannot write to is refused before an
     std::string as_user;
     if (::geteuid() == 0) {
         program = (tmp / "sphclip").string();
-        fs::copy_file(SPHCLIP_EXE, program);
+        fs::copy_file(SPHCLIP_PROGRAM, program); // the program proper: a launcher alone finds none
         fs::permissions(tmp.path(), fs::perms::all);
         fs::permissions(out, fs::perms::all);
         fs::permissions(tmp / "scene.json", fs::perms::owner_all | fs::perms::others_read);
@@ -364,7 +364,8 @@ namespace {
 // handlers are gone) and has a handler for `signal` (its SigCgt mask in
 // /proc/PID/status): sphclip's main() has begun. Waits at most 60 s.
 bool catches(pid_t pid, int signal) {
-    const fs::path program = fs::canonical(SPHCLIP_EXE);
+    // The program proper: the launcher (SPHCLIP_EXE) becomes it at once.
+    const fs::path program = fs::canonical(SPHCLIP_PROGRAM);
     for (int k = 0; k < 60000; ++k) {
         std::error_code ec;
         const fs::path exe = fs::read_symlink(fmt::format("/proc/{}/exe", pid), ec);

@@ -1,6 +1,7 @@
 #include "cli/child_process.hpp"
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -17,7 +18,20 @@ namespace sph {
 namespace fs = std::filesystem;
 
 fs::path self_executable() {
-    return fs::read_symlink("/proc/self/exe");
+    const fs::path program = fs::read_symlink("/proc/self/exe");
+    // Started through the launcher (cli/launcher.c): the launcher is what
+    // users and scripts call, and the data lies beside it. Taken only when
+    // its program proper is this very file, so that a variable inherited
+    // from another build's launcher is not.
+    if (const char* launcher = std::getenv("SPHCLIP_LAUNCHER"); launcher && *launcher) {
+        const fs::path folder = fs::path(launcher).parent_path();
+        for (const char* place : {SPHCLIP_PROGRAM_INSTALLED, SPHCLIP_PROGRAM_IN_BUILD}) {
+            std::error_code ec;
+            if (fs::equivalent(folder / place, program, ec))
+                return launcher;
+        }
+    }
+    return program;
 }
 
 pid_t start_child(const std::string& program, const std::vector<std::string>& argv,

@@ -12,8 +12,9 @@
 
 namespace sph {
 
-// This program's own file (/proc/self/exe), to start `sphclip run` children
-// of the same build whatever the current folder and PATH.
+// This program as users call it: its launcher (cli/launcher.c) when it was
+// started through one, else its own file (/proc/self/exe). The folder the
+// data is found from, and the program Slurm jobs and plans name.
 std::filesystem::path self_executable();
 
 // Starts `program` (looked up in PATH when `search_path`) with the arguments

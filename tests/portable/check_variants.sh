@@ -25,12 +25,15 @@
 set -euo pipefail
 
 build=$(readlink -f "${1:?usage: check_variants.sh BUILD_DIR}")
-sphclip=$build/sphclip
+# The program proper, not its launcher (build/sphclip), which would start it
+# outside the emulator.
+sphclip=$build/libexec/sphclip/sphclip
 tests=$build/sphclip_tests
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(mktemp -d /tmp/sphclip-variants.XXXXXX)
-# sphclip sets libgomp's spin count by starting itself again (cli/wait_policy.cpp),
-# which would leave the emulator: given here, it starts once.
+# Started directly, the program sets libgomp's spin count by starting itself
+# again (cli/wait_policy.cpp), which would leave the emulator: given here, it
+# starts once.
 export GOMP_SPINCOUNT=${GOMP_SPINCOUNT:-10000}
 trap 'rm -rf "$work"' EXIT
 

@@ -238,35 +238,37 @@ TEST_CASE("without --threads the run measures its thread count and records each 
           run.at("thread_counts")[0].at("chosen_by"));
 }
 
-// cli/wait_policy.hpp: with no policy in the environment, libgomp itself
+// cli/wait_policy.hpp, cli/launcher.c: with no policy in the environment, libgomp itself
 // reports sphclip's spin count (OMP_DISPLAY_ENV prints what it read at its
 // start), so the setting was made before libgomp read it; a policy the user
 // sets is kept; run.json records what libgomp read.
 TEST_CASE("sphclip sets libgomp's spin count before libgomp reads it, and keeps the user's",
           "[cli][run_json]") {
     TempFolder tmp;
-    const auto gomp_report = [&](const std::string& environment) {
+    const auto gomp_report = [&](const std::string& environment,
+                                 const std::string& program = SPHCLIP_EXE) {
         const auto log = tmp / "gomp.log";
-        const std::string command =
-            fmt::format("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT {} OMP_DISPLAY_ENV=verbose "
-                        "{} --version > {} 2>&1",
-                        environment, sph::test::shell_quote(SPHCLIP_EXE),
-                        sph::test::shell_quote(log.string()));
+        const std::string command = fmt::format(
+            "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT {} OMP_DISPLAY_ENV=verbose "
+            "{} --version > {} 2>&1",
+            environment, sph::test::shell_quote(program), sph::test::shell_quote(log.string()));
         REQUIRE(std::system(command.c_str()) == 0);
         return read_text(log);
     };
     CHECK(contains(gomp_report(""), "GOMP_SPINCOUNT = '10000'"));
+    // The program proper named directly starts itself again with it.
+    CHECK(contains(gomp_report("", SPHCLIP_PROGRAM), "GOMP_SPINCOUNT = '10000'"));
     CHECK(contains(gomp_report("GOMP_SPINCOUNT=1234"), "GOMP_SPINCOUNT = '1234'"));
     // The user's OMP_WAIT_POLICY alone: libgomp's own spin count for it.
     CHECK_FALSE(contains(gomp_report("OMP_WAIT_POLICY=active"), "GOMP_SPINCOUNT = '10000'"));
 
     const std::string scene = std::string(SPHCLIP_SOURCE_DIR) + "/scenes/hydrostatic_2d.json";
-    const std::string run = fmt::format(
-        "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT {} run {} --out {} --no-png --no-mp4 "
-        "--duration 0.002 --threads 1 --quiet > {} 2>&1",
-        sph::test::shell_quote(SPHCLIP_EXE), sph::test::shell_quote(scene),
-        sph::test::shell_quote((tmp / "run").string()),
-        sph::test::shell_quote((tmp / "run.log").string()));
+    const std::string run =
+        fmt::format("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT {} run {} --out {} --no-png --no-mp4 "
+                    "--duration 0.002 --threads 1 --quiet > {} 2>&1",
+                    sph::test::shell_quote(SPHCLIP_EXE), sph::test::shell_quote(scene),
+                    sph::test::shell_quote((tmp / "run").string()),
+                    sph::test::shell_quote((tmp / "run.log").string()));
     const int status = std::system(run.c_str());
     INFO(read_text(tmp / "run.log"));
     REQUIRE(status == 0);

@@ -183,8 +183,8 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
                 rate += glm::dot(gradient[e], state.velocity[i] - state.velocity[pairs.index[e]]);
             if (walls)
                 rate += wall_mirror * sum_over_pairs(*walls, i, [&](std::size_t e, std::uint32_t) {
-                    return glm::dot(wall_gradient[e], state.velocity[i]);
-                });
+                            return glm::dot(wall_gradient[e], state.velocity[i]);
+                        });
             if (!wall_motion_.empty())
                 rate -= wall_mirror * wall_motion_[i];
             source_[i] = target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;

@@ -13,9 +13,10 @@
 // boundary particles (Akinci et al. 2012) that contribute to rho and to
 // D rho / Dt (with their velocity, when a paddle moves them), and push back
 // with the fluid particle's own stiffness: each wall particle mirrors the
-// fluid particle in the force and in the rate alike (dfsph.cpp's notation). The density the solves hold at rho0
-// is summed each step, or carried by the continuity equation
-// (solver.density), which has no deficit at a free surface.
+// fluid particle in the force and in the rate alike (dfsph.cpp's notation).
+// The density the solves hold at rho0 is summed each step, or carried by the
+// continuity equation (solver.density), which has no deficit at a free
+// surface.
 
 #include "sph/solvers/solver.hpp"
 

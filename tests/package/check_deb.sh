@@ -20,7 +20,7 @@ grep -q "^ Depends:.*libegl" <<<"$info" || { echo "no libegl in Depends"; exit 1
 
 root="$work/root"
 dpkg-deb -x "$deb" "$root"
-for f in usr/bin/sphclip usr/share/sphclip/scenes/dam_break_2d.json \
+for f in usr/bin/sphclip usr/libexec/sphclip/sphclip usr/share/sphclip/scenes/dam_break_2d.json \
     usr/share/sphclip/scenes/meshes/boulder.obj \
     usr/share/sphclip/data/reference/martin_moyce_1952_surge_front_table2.csv \
     usr/share/doc/sphclip/README.md; do
@@ -29,6 +29,10 @@ done
 
 mkdir "$work/empty"
 cd "$work/empty"
+# The launcher (usr/bin/sphclip) starts the program proper from usr/libexec/
+# and sets libgomp's spin count on its way (src/cli/launcher.c).
+env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose "$root/usr/bin/sphclip" --version \
+    2>&1 | grep -q "GOMP_SPINCOUNT = '10000'" || { echo "the packaged launcher set no spin count"; exit 1; }
 export OMP_WAIT_POLICY=passive
 "$root/usr/bin/sphclip" --version
 "$root/usr/bin/sphclip" run "$root/usr/share/sphclip/scenes/dam_break_2d.json" --out run \

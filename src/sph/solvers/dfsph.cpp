@@ -25,10 +25,12 @@
 // D rho / Dt = J v, the correction is dv = -J^T s: the solves are
 // orthogonal projections, which take compression out of the velocities
 // and never add kinetic energy. With the walls mirrored in the force but
-// counted once in the rate (Akinci's term, as SPlisHSPlasH has it, until
-// 2026-12-05) the correction was not J's transpose, and a deep 3D tank at
-// rest blew up within 0.02 s at any step size or tolerance
-// (docs/validation.md, "A deep 3D water tank"). Taking every s_j but s_i as
+// counted once in the rate (Akinci's term; SPlisHSPlasH counts them once in
+// both) until 2026-12-05, the correction was not J's transpose, and a deep
+// 3D tank at rest blew up within 0.02 s at any step size or tolerance
+// (docs/validation.md, "The deep tank's blow-up"; tests/stability/
+// deep_tank_3d.json). Counted once in both, the walls would hold the fluid
+// with twice its pressure in the layers beside them. Taking every s_j but s_i as
 // zero, the correction changes D rho_i / Dt by -s_i S_i with
 //   S_i = |sum_j g_ij + 2 W_i|^2 + sum_j |g_ij|^2,
 // so s_i = (D rho_i / Dt) / S_i removes the divergence, and

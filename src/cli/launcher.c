@@ -34,11 +34,14 @@ int main(int argc, char** argv) {
     *strrchr(self, '/') = '\0'; /* the launcher's folder */
     static const char* const places[] = {SPHCLIP_PROGRAM_INSTALLED, SPHCLIP_PROGRAM_IN_BUILD};
     char program[2][PATH_MAX + 64];
+    int failure[2];
     for (int k = 0; k < 2; ++k) {
         snprintf(program[k], sizeof program[k], "%s/%s", self, places[k]);
         execv(program[k], argv);
+        failure[k] = errno; /* not found, or found and not runnable: say which */
     }
-    fprintf(stderr, "sphclip: error: the program proper is not beside its launcher: tried %s and %s\n",
-            program[0], program[1]);
+    fprintf(stderr,
+            "sphclip: error: cannot start the program proper beside its launcher: %s: %s; %s: %s\n",
+            program[0], strerror(failure[0]), program[1], strerror(failure[1]));
     return 1;
 }

@@ -78,8 +78,8 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
     // Local spans, not the members: loops that read members through `this`
     // stay scalar.
-    const std::span<Vec<D>> gradient = gradient_, wall_gradient = wall_gradient_,
-                            wall_sum = wall_sum_;
+    const std::span<glm::vec<D, float>> gradient = gradient_;
+    const std::span<Vec<D>> wall_gradient = wall_gradient_, wall_sum = wall_sum_;
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         // The pairs' gradients, kept for the solves' iterations, then their
@@ -90,12 +90,14 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             const std::uint32_t j = pairs.index[e];
             const Vec<D> x_ij = state.position[i] - state.position[j];
             const Real r = std::sqrt(squared_length<D>(x_ij));
-            gradient[e] = params.mass * pair_gradient(kernel, state, i, j, x_ij, r);
+            gradient[e] =
+                glm::vec<D, float>(params.mass * pair_gradient(kernel, state, i, j, x_ij, r));
         }
-        const Vec<D> sum =
-            sum_over_pairs(pairs, i, [&](std::size_t e, std::uint32_t) { return gradient[e]; });
-        const Real sum_squares = sum_over_pairs(
-            pairs, i, [&](std::size_t e, std::uint32_t) { return squared_length<D>(gradient[e]); });
+        const Vec<D> sum = sum_over_pairs(
+            pairs, i, [&](std::size_t e, std::uint32_t) { return Vec<D>(gradient[e]); });
+        const Real sum_squares = sum_over_pairs(pairs, i, [&](std::size_t e, std::uint32_t) {
+            return squared_length<D>(Vec<D>(gradient[e]));
+        });
         Vec<D> walls_sum(0);
         if (context.boundary) {
             const auto xb = context.boundary->positions();
@@ -172,7 +174,8 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
     int restarts = 0;
     int iterations = 0;
     for (;;) {
-        const std::span<const Vec<D>> gradient = gradient_, wall_sum = wall_sum_;
+        const std::span<const glm::vec<D, float>> gradient = gradient_;
+        const std::span<const Vec<D>> wall_sum = wall_sum_;
         // The compression rate with the current velocities, and the source
         // each particle's stiffness answers: the predicted density error
         // (density solve) or the rate itself (divergence solve).
@@ -184,7 +187,8 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
             // solves 1.8-3x slower with AVX-512 gathers).
             Real rate = wall_mirror * glm::dot(wall_sum[i], state.velocity[i]);
             for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
-                rate += glm::dot(gradient[e], state.velocity[i] - state.velocity[pairs.index[e]]);
+                rate += glm::dot(Vec<D>(gradient[e]),
+                                 state.velocity[i] - state.velocity[pairs.index[e]]);
             if (!wall_motion_.empty())
                 rate -= wall_mirror * wall_motion_[i];
             source_[i] = target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
@@ -251,14 +255,15 @@ template <int D>
 void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>& state) const {
     const std::size_t n = state.size();
     const NeighbourList& pairs = context.neighbours;
-    const std::span<const Vec<D>> gradient = gradient_, wall_sum = wall_sum_;
+    const std::span<const glm::vec<D, float>> gradient = gradient_;
+    const std::span<const Vec<D>> wall_sum = wall_sum_;
     const std::span<const Real> stiffness = stiffness_;
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         const Real s_i = stiffness[i];
         Vec<D> dv = -wall_mirror * s_i * wall_sum[i];
         for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
-            dv -= (s_i + stiffness[pairs.index[e]]) * gradient[e];
+            dv -= (s_i + stiffness[pairs.index[e]]) * Vec<D>(gradient[e]);
         state.velocity[i] += dv;
     }
 }

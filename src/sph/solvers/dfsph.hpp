@@ -91,7 +91,11 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Real> source_;                   // the compression rate to remove
     std::vector<Vec<D>> velocity_at_start_;      // to restart a diverging solve
     std::vector<Vec<D>> velocity_at_step_start_; // to redo a step in halves
-    std::vector<Vec<D>> gradient_;      // m grad W_ij per fluid pair (neighbour list order)
+    // m grad W_ij per fluid pair (neighbour list order), in single
+    // precision: the iterations stream it twice each, and its rounding
+    // (1e-7) is far below the solves' tolerances; both passes read the same
+    // values, so the operator stays symmetric. Sums are in double.
+    std::vector<glm::vec<D, float>> gradient_;
     std::vector<Vec<D>> wall_gradient_; // rho0 V_b grad W_ib per wall pair
     std::vector<Real> wall_motion_;     // sum_b w_ib . v_b; empty when no wall moves
     // W_i = sum_b w_ib: the walls' whole part in the rate and the

@@ -398,20 +398,30 @@ SPHCLIP_CLONED void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>
         out.size_for(0);
         return;
     }
-#pragma omp parallel for schedule(dynamic, 256)
-    for (std::size_t i = 0; i < n; ++i) {
-        std::uint32_t count = 0;
-        for_each_near(query[i], [&](std::uint32_t) { ++count; });
-        out.start[i + 1] = count;
+    // One walk over the cells, not two (one to count, one to fill): each
+    // block of rows lists its walls in a buffer of its own, and the buffers
+    // are then copied in order (the same list for any thread count).
+    constexpr std::size_t block = 256;
+    const std::size_t blocks = (n + block - 1) / block;
+    if (block_rows_.size() < blocks)
+        block_rows_.resize(blocks);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t k = 0; k < blocks; ++k) {
+        std::vector<std::uint32_t>& rows = block_rows_[k];
+        rows.clear();
+        for (std::size_t i = k * block, end = std::min(n, i + block); i < end; ++i) {
+            const std::size_t before = rows.size();
+            for_each_near(query[i], [&](std::uint32_t b) { rows.push_back(b); });
+            out.start[i + 1] = static_cast<std::uint32_t>(rows.size() - before);
+        }
     }
     for (std::size_t i = 0; i < n; ++i)
         out.start[i + 1] += out.start[i];
     out.size_for(out.start[n]);
-#pragma omp parallel for schedule(dynamic, 256)
-    for (std::size_t i = 0; i < n; ++i) {
-        std::uint32_t* row = out.index.data() + out.start[i];
-        for_each_near(query[i], [&](std::uint32_t b) { *row++ = b; });
-    }
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < blocks; ++k)
+        std::copy(block_rows_[k].begin(), block_rows_[k].end(),
+                  out.index.begin() + std::ptrdiff_t(out.start[k * block]));
 }
 
 template class BoundaryParticles<2>;

@@ -392,12 +392,19 @@ TEST_CASE("the step times exactly the stages the scene asks for", "[simulation][
                                      "xsph": {"epsilon": 0.3}})"}}) ==
           Names{"boundary neighbours", "density", "integration", "neighbour search", "pressure",
                 "reorder", "time step", "viscosity", "walls", "watchdog", "xsph"});
-    // dfsph without viscosity: its two solves and its default artificial
-    // viscosity, an effect of its own; with alpha 0, no viscosity stage.
+    // dfsph: its two solves, and its viscosities, Morris's and its default
+    // artificial one, in one pass of their own.
+    CHECK(stages_of({{"solver.name", "dfsph"}}) ==
+          Names{"artificial_viscosity in viscosities", "boundary neighbours", "density",
+                "divergence solve", "gravity", "integration", "neighbour search", "pressure solve",
+                "reorder", "time step", "viscosities", "viscosity in viscosities", "walls",
+                "watchdog"});
+    // Without viscosity, the artificial one alone in that pass; with alpha
+    // 0, no viscosity stage.
     CHECK(stages_of({{"solver.name", "dfsph"}, {"material.viscosity", "0"}}) ==
-          Names{"artificial_viscosity", "boundary neighbours", "density", "divergence solve",
-                "gravity", "integration", "neighbour search", "pressure solve", "reorder",
-                "time step", "walls", "watchdog"});
+          Names{"artificial_viscosity in viscosities", "boundary neighbours", "density",
+                "divergence solve", "gravity", "integration", "neighbour search", "pressure solve",
+                "reorder", "time step", "viscosities", "walls", "watchdog"});
     CHECK(stages_of({{"solver.name", "dfsph"},
                      {"material.viscosity", "0"},
                      {"solver.artificial_viscosity", "0"}}) ==

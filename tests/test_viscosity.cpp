@@ -222,6 +222,53 @@ TEST_CASE("wcsph's pressure pass adds both viscosities as their effects do",
     }
 }
 
+TEST_CASE("dfsph's viscosities pass adds both viscosities as their effects do, and no pressure",
+          "[viscosity][effects]") {
+    // The same patch and walls, each viscosity alone and both: the one pass
+    // (pressure_acceleration.hpp's with no pressure) against the effects
+    // from zero. The walls' hydrostatic pressure and the particles' own
+    // pressures are set, and must not leak into it.
+    for (const char* kernel_name : {"wendland_c2", "cubic_spline"}) {
+        INFO(kernel_name);
+        Patch p(kernel_name);
+        scramble(p.state);
+        p.params.wall_gravity = Vec<2>(0, -9.81);
+        const auto walls = BoundaryParticles<2>::box_walls(
+            {Vec<2>(0), Vec<2>(0.2)}, 0.005, p.params.h, p.params.mass / p.params.rest_density);
+        NeighbourList wall_neighbours;
+        walls.find_neighbours(p.state.position, wall_neighbours);
+        REQUIRE(wall_neighbours.pair_count() > 0);
+        for (std::size_t i = 0; i < p.state.size(); ++i)
+            p.state.pressure[i] = 1000 + 300 * std::sin(Real(i));
+        ArtificialViscosity<2> artificial(0.1);
+        LaminarViscosity<2> laminar(2.0);
+        const MonaghanViscosity monaghan = artificial.pair_viscosity(p.params);
+        const MorrisViscosity morris = laminar.pair_viscosity(p.params);
+        const EffectInputs<2> in{p.neighbours, &walls, wall_neighbours, 1e-3};
+        const auto compare = [&](const PairViscosities& set, std::vector<Effect<2>*> effects) {
+            std::vector<Real> scratch;
+            with_kernel<2>(p.params.kernel, p.params.h, [&](const auto& kernel) {
+                compute_pair_viscosities(p.params, kernel, p.neighbours, &walls, wall_neighbours,
+                                         set, scratch, p.state);
+            });
+            const std::vector<Vec<2>> pass = p.state.acceleration;
+            std::fill(p.state.acceleration.begin(), p.state.acceleration.end(), Vec<2>(0));
+            for (Effect<2>* effect : effects)
+                effect->apply(p.params, in, p.state);
+            Real largest = 0, difference = 0;
+            for (std::size_t i = 0; i < pass.size(); ++i) {
+                largest = std::max(largest, glm::length(p.state.acceleration[i]));
+                difference = std::max(difference, glm::length(pass[i] - p.state.acceleration[i]));
+            }
+            CHECK(largest > 0);
+            CHECK(difference < 1e-12 * largest);
+        };
+        compare({&monaghan, &morris}, {&artificial, &laminar});
+        compare({&monaghan, nullptr}, {&artificial});
+        compare({nullptr, &morris}, {&laminar});
+    }
+}
+
 TEST_CASE("Morris viscosity gives nu times the velocity's Laplacian", "[viscosity][effects]") {
     // A shear wave v_x = U sin(k y): its exact viscous acceleration is
     // -nu k^2 v_x. Brookshaw's operator has an error growing as (k h)^2,

@@ -166,4 +166,23 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
     });
 }
 
+// The viscosities alone, in the same pass with no pressure: for dfsph,
+// whose pressure comes from its solves. One pass over the pairs instead of
+// one for each (the pairs' gathers, r and the kernel's derivative shared).
+// Overwrites state.acceleration; `zero_terms` is the caller's scratch.
+template <int D, class Kernel>
+void compute_pair_viscosities(const Params<D>& params, const Kernel& kernel,
+                              const NeighbourList& neighbours, const BoundaryParticles<D>* boundary,
+                              const NeighbourList& boundary_neighbours,
+                              const PairViscosities& viscosities, std::vector<Real>& zero_terms,
+                              State<D>& state) {
+    resize_with_headroom(zero_terms, state.size());
+    std::fill(zero_terms.begin(), zero_terms.end(), Real(0));
+    viscosities.dispatch([&](auto artificial, auto laminar) {
+        detail::accelerate_pairs<decltype(artificial)::value, decltype(laminar)::value, false,
+                                 false>(params, kernel, neighbours, boundary, boundary_neighbours,
+                                        viscosities, zero_terms, state, nullptr);
+    });
+}
+
 } // namespace sph

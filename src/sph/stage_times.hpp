@@ -33,6 +33,7 @@ enum class Stage : std::uint8_t {
     pressure,         // explicit solvers: the equation of state, the pressure force
     density_rate,     // wcsph's carried density: its rate and delta-SPH's diffusion
     wall_pressure,    // wcsph: the walls' pressure extrapolated from the fluid
+    viscosities,      // dfsph: Monaghan's and Morris's viscosities in one pass
     divergence_solve, // dfsph
     pressure_solve,   // dfsph
     integration,
@@ -61,17 +62,29 @@ enum class Stage : std::uint8_t {
 
 // The names the stage table and run.json's `stages` print, by Stage.
 inline constexpr std::array<std::string_view, std::size_t(Stage::count)> stage_names{
-    "neighbour search", "boundary neighbours",
-    "density",          "pressure",
-    "density rate",     "wall pressure",
-    "divergence solve", "pressure solve",
-    "integration",      "time step",
-    "watchdog",         "reorder",
-    "rank halo",        "halo exchange",
-    "rank gather",      "frame statistics",
-    "render",           "composite",
-    "readback",         "encode wait",
-    "output",           "encode"};
+    "neighbour search",
+    "boundary neighbours",
+    "density",
+    "pressure",
+    "density rate",
+    "wall pressure",
+    "viscosities",
+    "divergence solve",
+    "pressure solve",
+    "integration",
+    "time step",
+    "watchdog",
+    "reorder",
+    "rank halo",
+    "halo exchange",
+    "rank gather",
+    "frame statistics",
+    "render",
+    "composite",
+    "readback",
+    "encode wait",
+    "output",
+    "encode"};
 
 constexpr std::string_view stage_name(Stage stage) {
     return stage_names[std::size_t(stage)];

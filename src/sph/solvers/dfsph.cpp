@@ -4,10 +4,12 @@
 #include "sph/integrate.hpp"
 #include "sph/neighbours/neighbour_sum.hpp"
 #include "sph/pair_direction.hpp"
+#include "sph/pressure_acceleration.hpp"
 #include "sph/solvers/density_with_walls.hpp"
 #include "sph/vector_clones.hpp"
 
 #include <algorithm>
+#include <array>
 #include <optional>
 #include <span>
 
@@ -350,8 +352,27 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
             particles > 0 ? 100 * sum / (particles * params.rest_density) : 0;
     }
     // 3. Non-pressure forces, the scene's effects (viscosity, gravity, ...); v* = v + dt a.
-    std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
-    context.apply_effects(params, state);
+    // Monaghan's and Morris's viscosities, when the scene names them, in
+    // one pass over the pairs (pressure_acceleration.hpp, with no pressure).
+    const auto* artificial = fused_effect<ArtificialViscosity<D>>(context.effects);
+    const auto* laminar = fused_effect<LaminarViscosity<D>>(context.effects);
+    if (artificial || laminar) {
+        auto timed = context.time(Stage::viscosities);
+        const MonaghanViscosity monaghan =
+            artificial ? artificial->pair_viscosity(params) : MonaghanViscosity{};
+        const MorrisViscosity morris =
+            laminar ? laminar->pair_viscosity(params) : MorrisViscosity{};
+        with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
+            compute_pair_viscosities(
+                params, kernel, context.neighbours, context.boundary, context.boundary_neighbours,
+                {artificial ? &monaghan : nullptr, laminar ? &morris : nullptr}, zero_terms_,
+                state);
+        });
+    } else {
+        std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
+    }
+    const std::array<const Effect<D>*, 2> merged{artificial, laminar};
+    context.apply_effects(params, state, merged, Stage::viscosities);
     if (params.wall_gravity != Vec<D>(0) && context.boundary) {
         auto timed = context.time(Stage::pressure_solve);
         add_wall_weight(params, context, state);

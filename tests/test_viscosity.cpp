@@ -79,6 +79,17 @@ void scramble(State<2>& state) {
         v = {next(), next()};
 }
 
+// Wall particles around the patch's box, and each fluid particle's list of them.
+struct PatchWalls {
+    BoundaryParticles<2> walls;
+    NeighbourList neighbours;
+    explicit PatchWalls(const Patch& p)
+        : walls(BoundaryParticles<2>::box_walls({Vec<2>(0), Vec<2>(0.2)}, 0.005, p.params.h,
+                                                p.params.mass / p.params.rest_density)) {
+        walls.find_neighbours(p.state.position, neighbours);
+    }
+};
+
 } // namespace
 
 TEST_CASE("the scene gets the viscosity effects it asks for", "[viscosity][effects]") {
@@ -185,10 +196,9 @@ TEST_CASE("wcsph's pressure pass adds both viscosities as their effects do",
         INFO(kernel_name);
         Patch p(kernel_name);
         scramble(p.state);
-        const auto walls = BoundaryParticles<2>::box_walls(
-            {Vec<2>(0), Vec<2>(0.2)}, 0.005, p.params.h, p.params.mass / p.params.rest_density);
-        NeighbourList wall_neighbours;
-        walls.find_neighbours(p.state.position, wall_neighbours);
+        const PatchWalls around(p);
+        const BoundaryParticles<2>& walls = around.walls;
+        const NeighbourList& wall_neighbours = around.neighbours;
         REQUIRE(wall_neighbours.pair_count() > 0);
         for (std::size_t i = 0; i < p.state.size(); ++i)
             p.state.pressure[i] =
@@ -233,10 +243,9 @@ TEST_CASE("dfsph's viscosities pass adds both viscosities as their effects do, a
         Patch p(kernel_name);
         scramble(p.state);
         p.params.wall_gravity = Vec<2>(0, -9.81);
-        const auto walls = BoundaryParticles<2>::box_walls(
-            {Vec<2>(0), Vec<2>(0.2)}, 0.005, p.params.h, p.params.mass / p.params.rest_density);
-        NeighbourList wall_neighbours;
-        walls.find_neighbours(p.state.position, wall_neighbours);
+        const PatchWalls around(p);
+        const BoundaryParticles<2>& walls = around.walls;
+        const NeighbourList& wall_neighbours = around.neighbours;
         REQUIRE(wall_neighbours.pair_count() > 0);
         for (std::size_t i = 0; i < p.state.size(); ++i)
             p.state.pressure[i] = 1000 + 300 * std::sin(Real(i));

@@ -143,8 +143,8 @@ class BoundaryParticles {
     std::vector<std::uint32_t> moving_order_;
     std::vector<std::size_t> moving_cell_;   // scratch of refresh_moving_grid()
     std::vector<std::uint32_t> moving_next_; // scratch of refresh_moving_grid()
-    // Scratch of find_neighbours(): a block of query rows' walls each (it
-    // runs one call at a time).
+    // Scratch of find_neighbours(): a block of query rows' walls each, as
+    // much memory as the lists it fills (it runs one call at a time).
     mutable std::vector<std::vector<std::uint32_t>> block_rows_;
 };
 

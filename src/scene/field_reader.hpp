@@ -204,6 +204,8 @@ class FieldReader {
             fail(path, fmt::format("must be greater than 0, got {}", x));
         if (bound == Bound::non_negative && x < 0)
             fail(path, fmt::format("must not be negative, got {}", x));
+        if (bound == Bound::fraction && !(x >= 0 && x <= 1))
+            fail(path, fmt::format("must be between 0 and 1, got {}", x));
         return x;
     }
 

@@ -65,9 +65,12 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.integrator = scene.solver.integrator;
     p.walls = derived.walls;
     p.time_step = time_step_settings(scene);
-    p.pressure_solve = {scene.solver.tolerance, scene.solver.divergence_tolerance,
-                        scene.solver.min_iterations, scene.solver.max_iterations,
-                        scene.solver.warm_start};
+    p.pressure_solve = {.tolerance = scene.solver.tolerance,
+                        .divergence_tolerance = scene.solver.divergence_tolerance,
+                        .min_iterations = scene.solver.min_iterations,
+                        .max_iterations = scene.solver.max_iterations,
+                        .warm_start = scene.solver.warm_start,
+                        .warm_start_fraction = scene.solver.warm_start_fraction};
     p.watchdog = {scene.watchdog.retries, scene.watchdog.max_density_ratio,
                   scene.watchdog.max_displacement, derived.max_speed,
                   !scene.watchdog.max_speed.has_value()};

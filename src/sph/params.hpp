@@ -61,7 +61,8 @@ struct PressureSolveSettings {
     Real divergence_tolerance = 0.1; // %: mean dt (D rho / Dt) / rho0 allowed
     int min_iterations = 2;
     int max_iterations = 100;
-    bool warm_start = false; // start from the last step's pressure
+    bool warm_start = true;         // start from the last step's pressure...
+    Real warm_start_fraction = 0.5; // ...times this (the density solve's; dfsph.cpp)
 };
 
 // The per-step checks and their retries (watchdog.hpp).

@@ -18,7 +18,7 @@ namespace sph {
 using Vec3 = std::array<double, 3>;
 
 // The range a number key must lie in.
-enum class Bound { any, positive, non_negative };
+enum class Bound { any, positive, non_negative, fraction }; // fraction: 0 to 1
 
 // How many numbers a vector key holds: one per dimension of the scene, or fixed.
 enum class VectorSize { dimension, two, three };

@@ -139,19 +139,25 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
         (target == Target::density ? settings.tolerance : settings.divergence_tolerance) / 100;
     const Real rho0 = params.rest_density;
     // Warm start (Bender & Koschier 2017, sec. 4.3; solver.warm_start): last
-    // step's stiffness is most of this step's, so it is applied first and the
-    // iterations only correct what changed. Measured: 2-3x fewer iterations,
-    // but in a deep tank the pressure drifts up (the solve fixes its
-    // gradient near the surface, hardly its level below), 31% against 11%
-    // without, so it is off by default. The density solve's s = dt p / rho^2
-    // scales with dt; the divergence solve restarts from half its last value,
-    // as SPlisHSPlasH does, since its source changes sign more often.
+    // step's stiffness is most of this step's, so a part of it is applied
+    // first and the iterations only correct the rest. Why a part
+    // (solver.warm_start_fraction, 0.5 by default, as SPlisHSPlasH carries
+    // it): an error in the pressure's level changes the density error only
+    // in the bottom rows, so the mean a solve stops at hardly sees it (a
+    // part in 80 in a column 80 rows deep). Carried whole, such an error is
+    // never corrected, and a deep column bounces, its pressure alternating
+    // between near zero and twice hydrostatic (33-54% RMS off); carried by
+    // half, each solve rebuilds half of it and the error halves every step
+    // (docs/validation.md, "The warm start carried by half";
+    // tests/test_solvers.cpp). The density solve's s = dt p / rho^2 scales
+    // with dt; the divergence solve restarts from half its last value,
+    // since its source changes sign more often.
     std::vector<Real>& sum = target == Target::density ? stiffness_sum_ : divergence_sum_;
     std::vector<Real>& previous =
         target == Target::density ? previous_stiffness_ : previous_divergence_;
     const Real scale = target == Target::divergence ? Real(0.5)
-                       : previous_dt_ > 0           ? dt / previous_dt_
-                                                    : 0;
+                       : previous_dt_ > 0 ? settings.warm_start_fraction * dt / previous_dt_
+                                          : 0;
     // Over ranks: the halo's velocities from their owners (the kick gave
     // the halo accelerations from incomplete neighbourhoods).
     context.share_halo(state.velocity);

@@ -90,9 +90,11 @@ class SortedGrid final : public NeighbourSearch<D> {
     using Coord = std::array<std::uint32_t, D>;
     // Per-thread buffers, kept between calls.
     struct Scratch {
-        std::vector<std::uint64_t> keyed;   // (index << 32 | sorted position) per candidate
-        std::array<std::vector<Real>, D> x; // the candidates of one cell, gathered
-        std::vector<std::uint32_t> index;   // their indices in the caller's order
+        std::vector<std::uint64_t> keyed;    // (index << 32 | sorted position) per candidate
+        std::vector<std::uint64_t> merged;   // keyed's runs, merged (sort_by_index)
+        std::vector<std::uint32_t> run_ends; // where keyed's ascending runs end
+        std::array<std::vector<Real>, D> x;  // the candidates of one cell, gathered
+        std::vector<std::uint32_t> index;    // their indices in the caller's order
         std::vector<Real> distance2;
         std::vector<std::uint32_t> rows; // this thread's neighbour rows, any order
     };
@@ -112,6 +114,8 @@ class SortedGrid final : public NeighbourSearch<D> {
     // Gathers into s the candidates of the particles of one cell, ordered by
     // index; returns how many.
     std::size_t gather_candidates(std::size_t cell, Real r2, Scratch& s) const;
+    // Sorts s.keyed[0, count) by merging its ascending runs.
+    static void sort_by_index(std::size_t count, Scratch& s);
     void list_neighbours(Real radius, NeighbourList& out);
 
     // A box the grid covers besides the positions (cell_order's `within`).

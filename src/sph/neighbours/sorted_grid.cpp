@@ -454,11 +454,16 @@ std::size_t SortedGrid<D>::gather_candidates(std::size_t cell, Real r2, Scratch&
     for (int k = 0; k < range_count; ++k)
         total += ranges[k].end - ranges[k].begin;
     if (s.keyed.size() < total) {
-        s.keyed.resize(total);
+        // With headroom (sph/headroom.hpp): a cell's candidates grow a few
+        // at a time as a fluid settles, and each growth would allocate.
+        const std::size_t grown = total + total / 4;
+        s.keyed.resize(grown);
+        s.merged.resize(grown); // sort_by_index's
+        s.run_ends.reserve(grown + 1);
         for (int a = 0; a < D; ++a)
-            s.x[a].resize(total);
-        s.index.resize(total);
-        s.distance2.resize(total);
+            s.x[a].resize(grown);
+        s.index.resize(grown);
+        s.distance2.resize(grown);
     }
 
     // Only candidates closer than the radius to the box around the cell's
@@ -508,8 +513,6 @@ void SortedGrid<D>::sort_by_index(std::size_t count, Scratch& s) {
     if (s.run_ends.empty())
         return;
     s.run_ends.push_back(static_cast<std::uint32_t>(count));
-    if (s.merged.size() < count)
-        s.merged.resize(count);
     std::uint64_t* from = s.keyed.data();
     std::uint64_t* to = s.merged.data();
     while (s.run_ends.size() > 1) {

@@ -250,6 +250,17 @@ std::size_t position(const std::vector<std::string>& names, const std::string& n
 
 } // namespace
 
+// FFmpeg is loaded when the first video is written, not linked: every
+// function the writer calls must be in the libraries of the headers built
+// against (a missing one would fail a user's first clip, not the build).
+TEST_CASE("FFmpeg's functions load from its libraries on first use", "[mp4]") {
+    const sph::libav::Functions* functions = nullptr;
+    REQUIRE_NOTHROW(functions = &sph::libav::functions());
+    CHECK(functions->avcodec_send_frame != nullptr);
+    CHECK(functions->sws_scale != nullptr);
+    CHECK(&sph::libav::functions() == functions);
+}
+
 TEST_CASE("a clip decodes to the frames, size, format and duration written", "[mp4]") {
     if (!Mp4Writer::available()) {
         WARN("this libavcodec has no libx264; MP4 tests skipped");

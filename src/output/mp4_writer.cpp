@@ -3,15 +3,6 @@
 #include "output/files.hpp"
 #include "output/libav_handles.hpp"
 
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavformat/avformat.h>
-#include <libavutil/error.h>
-#include <libavutil/opt.h>
-#include <libavutil/rational.h>
-#include <libswscale/swscale.h>
-}
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,9 +16,13 @@ extern "C" {
 namespace sph {
 namespace {
 
+const libav::Functions& av() {
+    return libav::functions();
+}
+
 std::string av_error_text(int error) {
     char text[AV_ERROR_MAX_STRING_SIZE] = {};
-    av_strerror(error, text, sizeof text);
+    av().av_strerror(error, text, sizeof text);
     return text;
 }
 
@@ -46,8 +41,8 @@ int check(int result, const std::filesystem::path& path, std::string_view doing)
 struct FormatContextDeleter {
     void operator()(AVFormatContext* context) const {
         if (context->pb && !(context->oformat->flags & AVFMT_NOFILE))
-            avio_closep(&context->pb);
-        avformat_free_context(context);
+            av().avio_closep(&context->pb);
+        av().avformat_free_context(context);
     }
 };
 using libav::CodecContextDeleter;
@@ -69,7 +64,7 @@ struct TemporaryFile {
 // and close; only problems belong on the program's stderr.
 void quiet_libav_logging() {
     static std::once_flag once;
-    std::call_once(once, [] { av_log_set_level(AV_LOG_ERROR); });
+    std::call_once(once, [] { av().av_log_set_level(AV_LOG_ERROR); });
 }
 
 int round_up_to_even(int n) {
@@ -110,9 +105,9 @@ struct Mp4Writer::Encoder {
     // Sends `frame` (nullptr: end of stream) and writes every packet the
     // encoder has ready.
     void encode(const AVFrame* frame, const std::filesystem::path& path) {
-        check(avcodec_send_frame(codec.get(), frame), path, "encoding a frame");
+        check(av().avcodec_send_frame(codec.get(), frame), path, "encoding a frame");
         for (;;) {
-            const int received = avcodec_receive_packet(codec.get(), packet.get());
+            const int received = av().avcodec_receive_packet(codec.get(), packet.get());
             if (received == AVERROR(EAGAIN) || received == AVERROR_EOF)
                 return;
             check(received, path, "encoding a frame");
@@ -120,9 +115,10 @@ struct Mp4Writer::Encoder {
             // 1/fps, and the last one's sets the length of the video.
             if (packet->duration == 0)
                 packet->duration = 1;
-            av_packet_rescale_ts(packet.get(), codec->time_base, stream->time_base);
+            av().av_packet_rescale_ts(packet.get(), codec->time_base, stream->time_base);
             packet->stream_index = stream->index;
-            check(av_interleaved_write_frame(format.get(), packet.get()), path, "writing a frame");
+            check(av().av_interleaved_write_frame(format.get(), packet.get()), path,
+                  "writing a frame");
         }
     }
 };
@@ -133,7 +129,7 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, int width, int height, d
     if (width < 1 || height < 1)
         throw std::invalid_argument(
             fmt::format("video {}: size {}x{} is not positive", path.string(), width, height));
-    const AVRational frame_rate = av_d2q(fps, 100000);
+    const AVRational frame_rate = av().av_d2q(fps, 100000);
     if (!std::isfinite(fps) || fps <= 0 || frame_rate.num <= 0 || frame_rate.den <= 0)
         throw std::invalid_argument(
             fmt::format("video {}: frame rate {} is not a positive number", path.string(), fps));
@@ -145,7 +141,7 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, int width, int height, d
             fmt::format("video {}: threads {} is negative", path.string(), options.threads));
 
     quiet_libav_logging();
-    const AVCodec* h264 = avcodec_find_encoder_by_name("libx264");
+    const AVCodec* h264 = av().avcodec_find_encoder_by_name("libx264");
     if (!h264)
         throw std::runtime_error(fmt::format(
             "cannot write video {}: this libavcodec has no libx264 encoder", path.string()));
@@ -160,11 +156,11 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, int width, int height, d
     const std::string url = "file:" + partial.string();
 
     AVFormatContext* format = nullptr;
-    check(avformat_alloc_output_context2(&format, nullptr, "mp4", url.c_str()), path,
+    check(av().avformat_alloc_output_context2(&format, nullptr, "mp4", url.c_str()), path,
           "creating the MP4 muxer");
     encoder->format.reset(format);
 
-    encoder->codec.reset(avcodec_alloc_context3(h264));
+    encoder->codec.reset(av().avcodec_alloc_context3(h264));
     if (!encoder->codec)
         check(AVERROR(ENOMEM), path, "creating the encoder");
     AVCodecContext& codec = *encoder->codec;
@@ -181,52 +177,53 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, int width, int height, d
     // MP4 keeps the H.264 parameter sets in the header, not in the stream.
     if (format->oformat->flags & AVFMT_GLOBALHEADER)
         codec.flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
-    check(av_opt_set(codec.priv_data, "preset", options.preset.c_str(), 0), path,
+    check(av().av_opt_set(codec.priv_data, "preset", options.preset.c_str(), 0), path,
           "setting the x264 preset");
-    check(av_opt_set_double(codec.priv_data, "crf", options.crf, 0), path, "setting the x264 crf");
+    check(av().av_opt_set_double(codec.priv_data, "crf", options.crf, 0), path,
+          "setting the x264 crf");
     if (!options.mb_tree)
-        check(av_opt_set(codec.priv_data, "x264-params", "mbtree=0", 0), path,
+        check(av().av_opt_set(codec.priv_data, "x264-params", "mbtree=0", 0), path,
               "turning off the x264 macroblock tree");
-    check(avcodec_open2(&codec, h264, nullptr), path,
+    check(av().avcodec_open2(&codec, h264, nullptr), path,
           fmt::format("opening libx264 (preset '{}', crf {})", options.preset, options.crf));
 
-    encoder->stream = avformat_new_stream(format, nullptr);
+    encoder->stream = av().avformat_new_stream(format, nullptr);
     if (!encoder->stream)
         check(AVERROR(ENOMEM), path, "adding the video stream");
-    check(avcodec_parameters_from_context(encoder->stream->codecpar, &codec), path,
+    check(av().avcodec_parameters_from_context(encoder->stream->codecpar, &codec), path,
           "adding the video stream");
     // A hint: the muxer may refine it, so packets are rescaled to the
     // stream's time base as it stands after the header is written.
     encoder->stream->time_base = codec.time_base;
     encoder->stream->avg_frame_rate = frame_rate;
 
-    check(avio_open(&format->pb, url.c_str(), AVIO_FLAG_WRITE), path,
+    check(av().avio_open(&format->pb, url.c_str(), AVIO_FLAG_WRITE), path,
           "creating " + partial.string());
     encoder->partial.path = partial;
     AVDictionary* muxer_options = nullptr;
-    av_dict_set(&muxer_options, "movflags", "+faststart", 0);
-    const int header = avformat_write_header(format, &muxer_options);
-    av_dict_free(&muxer_options);
+    av().av_dict_set(&muxer_options, "movflags", "+faststart", 0);
+    const int header = av().avformat_write_header(format, &muxer_options);
+    av().av_dict_free(&muxer_options);
     check(header, path, "writing the MP4 header");
 
-    encoder->yuv.reset(av_frame_alloc());
-    encoder->packet.reset(av_packet_alloc());
+    encoder->yuv.reset(av().av_frame_alloc());
+    encoder->packet.reset(av().av_packet_alloc());
     if (!encoder->yuv || !encoder->packet)
         check(AVERROR(ENOMEM), path, "allocating frame buffers");
     encoder->yuv->format = codec.pix_fmt;
     encoder->yuv->width = encoded_width;
     encoder->yuv->height = encoded_height;
-    check(av_frame_get_buffer(encoder->yuv.get(), 0), path, "allocating frame buffers");
+    check(av().av_frame_get_buffer(encoder->yuv.get(), 0), path, "allocating frame buffers");
 
-    encoder->scaler.reset(sws_getContext(
+    encoder->scaler.reset(av().sws_getContext(
         encoded_width, encoded_height, AV_PIX_FMT_RGBA, encoded_width, encoded_height,
         AV_PIX_FMT_YUV420P, SWS_BILINEAR | SWS_ACCURATE_RND, nullptr, nullptr, nullptr));
     if (!encoder->scaler)
         throw std::runtime_error(fmt::format(
             "cannot write video {}: swscale cannot convert RGBA to yuv420p", path.string()));
     // The BT.709 matrix into limited range, matching the tags set above.
-    const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-    sws_setColorspaceDetails(encoder->scaler.get(), bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
+    const int* bt709 = av().sws_getCoefficients(SWS_CS_ITU709);
+    av().sws_setColorspaceDetails(encoder->scaler.get(), bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
 
     if (encoded_width != width || encoded_height != height)
         encoder->padded_rgba.resize(std::size_t(encoded_width) * std::size_t(encoded_height) * 4);
@@ -260,9 +257,10 @@ void Mp4Writer::write(const Image& frame) {
             rgba = encoder.padded_rgba.data();
         }
         // The encoder may still hold the previous frame's buffer.
-        check(av_frame_make_writable(&yuv), path_, "allocating a frame");
+        check(av().av_frame_make_writable(&yuv), path_, "allocating a frame");
         const int rgba_stride = yuv.width * 4;
-        sws_scale(encoder.scaler.get(), &rgba, &rgba_stride, 0, yuv.height, yuv.data, yuv.linesize);
+        av().sws_scale(encoder.scaler.get(), &rgba, &rgba_stride, 0, yuv.height, yuv.data,
+                       yuv.linesize);
         yuv.pts = std::int64_t(frames_written_);
         encoder.encode(&yuv, path_);
         ++frames_written_;
@@ -281,8 +279,9 @@ void Mp4Writer::finish() {
     if (failed_ || frames_written_ == 0)
         return;
     encoder->encode(nullptr, path_);
-    check(av_write_trailer(encoder->format.get()), path_, "writing the MP4 index");
-    check(avio_closep(&encoder->format->pb), path_, "closing " + encoder->partial.path.string());
+    check(av().av_write_trailer(encoder->format.get()), path_, "writing the MP4 index");
+    check(av().avio_closep(&encoder->format->pb), path_,
+          "closing " + encoder->partial.path.string());
     std::error_code error;
     std::filesystem::rename(encoder->partial.path, path_, error);
     if (error)
@@ -293,7 +292,11 @@ void Mp4Writer::finish() {
 }
 
 bool Mp4Writer::available() {
-    return avcodec_find_encoder_by_name("libx264") != nullptr;
+    try {
+        return av().avcodec_find_encoder_by_name("libx264") != nullptr;
+    } catch (const std::runtime_error&) {
+        return false; // no FFmpeg to load
+    }
 }
 
 } // namespace sph

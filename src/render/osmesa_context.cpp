@@ -1,6 +1,7 @@
 // OSMesa: Mesa's off-screen software rasteriser (llvmpipe), available where no
 // EGL is. It wants a client-memory colour buffer to make the context current;
 // a small one does, since sphclip draws into framebuffer objects.
+#include "platform/shared_library.hpp"
 #include "render/gl_context.hpp"
 
 #include <GL/osmesa.h>
@@ -10,8 +11,35 @@ namespace sph {
 
 namespace {
 
+// OSMesa's functions, from its library (with LLVM behind it) loaded when the
+// first context is made (platform/shared_library.hpp says why not at start).
+// SPHCLIP_OSMESA_SONAME: the library's soname, from CMake.
+struct OsmesaFunctions {
+    decltype(&OSMesaCreateContextAttribs) create_context;
+    decltype(&OSMesaMakeCurrent) make_current;
+    decltype(&OSMesaDestroyContext) destroy_context;
+    decltype(&OSMesaGetProcAddress) get_proc_address;
+};
+
+const OsmesaFunctions& osmesa() {
+    static const OsmesaFunctions loaded = [] {
+        try {
+            const std::string soname = SPHCLIP_OSMESA_SONAME;
+            return OsmesaFunctions{
+                library_function<decltype(&OSMesaCreateContextAttribs)>(
+                    soname, "OSMesaCreateContextAttribs"),
+                library_function<decltype(&OSMesaMakeCurrent)>(soname, "OSMesaMakeCurrent"),
+                library_function<decltype(&OSMesaDestroyContext)>(soname, "OSMesaDestroyContext"),
+                library_function<decltype(&OSMesaGetProcAddress)>(soname, "OSMesaGetProcAddress")};
+        } catch (const std::runtime_error& error) {
+            throw GlContextError(std::string("OSMesa: ") + error.what());
+        }
+    }();
+    return loaded;
+}
+
 void* osmesa_proc(const char* name) {
-    return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+    return reinterpret_cast<void*>(osmesa().get_proc_address(name));
 }
 
 class OsmesaContext final : public GlContext {
@@ -28,21 +56,21 @@ class OsmesaContext final : public GlContext {
                                   OSMESA_CONTEXT_MINOR_VERSION,
                                   5,
                                   0};
-        context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+        context_ = osmesa().create_context(attributes, nullptr);
         if (!context_)
             throw GlContextError("OSMesa: OSMesaCreateContextAttribs for OpenGL 4.5 core failed");
-        if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, side, side)) {
-            OSMesaDestroyContext(context_);
+        if (!osmesa().make_current(context_, buffer_.data(), GL_UNSIGNED_BYTE, side, side)) {
+            osmesa().destroy_context(context_);
             throw GlContextError("OSMesa: OSMesaMakeCurrent failed");
         }
         try {
             load_functions(osmesa_proc, "osmesa");
         } catch (...) {
-            OSMesaDestroyContext(context_);
+            osmesa().destroy_context(context_);
             throw;
         }
     }
-    ~OsmesaContext() override { OSMesaDestroyContext(context_); }
+    ~OsmesaContext() override { osmesa().destroy_context(context_); }
 
   private:
     static constexpr int side = 16;

@@ -17,13 +17,18 @@ echo "package: $(basename "$deb")"
 info="$(dpkg-deb -I "$deb")"
 grep -E "^ (Package|Version|Architecture|Depends|Recommends):" <<<"$info"
 grep -q "^ Depends:.*libegl" <<<"$info" || { echo "no libegl in Depends"; exit 1; }
+# Loaded when first needed, not linked (src/platform/shared_library.hpp):
+# dpkg-shlibdeps cannot see them, CMakeLists.txt names them.
+for package in libosmesa6 libavcodec libswscale; do
+    grep -q "^ Depends:.*$package" <<<"$info" || { echo "no $package in Depends"; exit 1; }
+done
 
 root="$work/root"
 dpkg-deb -x "$deb" "$root"
 for f in usr/bin/sphclip usr/libexec/sphclip/sphclip usr/share/sphclip/scenes/dam_break_2d.json \
     usr/share/sphclip/scenes/meshes/boulder.obj \
     usr/share/sphclip/data/reference/martin_moyce_1952_surge_front_table2.csv \
-    usr/share/doc/sphclip/README.md; do
+    usr/share/doc/sphclip/README.md usr/libexec/sphclip/libsphclip_vdb.so; do
     [ -e "$root/$f" ] || { echo "missing from the package: $f"; exit 1; }
 done
 
@@ -38,6 +43,10 @@ export OMP_WAIT_POLICY=passive
 "$root/usr/bin/sphclip" run "$root/usr/share/sphclip/scenes/dam_break_2d.json" --out run \
     --duration 0.05 --threads 1 --quiet
 [ -s run/clip.mp4 ] && [ -s run/frames/frame_00001.png ] || { echo "the packaged run wrote no clip"; exit 1; }
+# The 3D surface's OpenVDB module, found beside the packaged program.
+"$root/usr/bin/sphclip" run "$root/usr/share/sphclip/scenes/dam_break_3d.json" --out surface \
+    --export surface --no-png --no-mp4 --duration 0.02 --fps 50 --set fluid.spacing=0.01 --quiet
+[ -s surface/surface/frame_00000.vdb ] || { echo "the packaged run wrote no .vdb surface"; exit 1; }
 "$root/usr/bin/sphclip" validate dam_break_2d --out validate --set fluid.spacing=0.005 \
     --set duration=0.1 >validate.log 2>&1 || { cat validate.log; exit 1; }
 [ -s validate/dam_break_2d/surge_front_vs_reference.csv ] ||

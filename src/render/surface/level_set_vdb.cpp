@@ -1,7 +1,8 @@
 // The 3D surface with OpenVDB (reconstruct.hpp): particles to a narrow-band
 // level set, smoothed and eroded, meshed at zero; and the .vdb export.
-#include "output/files.hpp"
-#include "render/surface/reconstruct.hpp"
+// Built as the module libsphclip_vdb.so (level_set_module.hpp), which
+// exports only the table at the end.
+#include "render/surface/level_set_module.hpp"
 #include "sph/wall_clock.hpp"
 
 #include <algorithm>
@@ -100,10 +101,6 @@ void drop_deep_inside(openvdb::FloatGrid& grid, int half_width) {
 }
 
 } // namespace
-
-bool surface_3d_available() {
-    return true;
-}
 
 std::shared_ptr<const LevelSet> make_level_set(const Snapshot& frame, double spacing,
                                                const SurfaceSettings& settings,
@@ -257,3 +254,10 @@ void write_level_set(const LevelSet& level_set, const std::filesystem::path& pat
 }
 
 } // namespace sph
+
+extern "C" __attribute__((visibility("default"))) const sph::LevelSetFunctions*
+sphclip_level_set_functions() {
+    static constexpr sph::LevelSetFunctions functions{&sph::make_level_set, &sph::mesh_level_set,
+                                                      &sph::write_level_set};
+    return &functions;
+}

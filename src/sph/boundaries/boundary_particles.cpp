@@ -34,8 +34,9 @@ std::size_t BoundaryParticles<D>::cell_index(const Grid& grid, const Cell& c) {
 }
 
 template <int D>
-template <bool Moving, class Visit>
-void BoundaryParticles<D>::for_each_in(const Grid& grid, const Vec<D>& x, Visit&& visit) const {
+template <class VisitRow>
+void BoundaryParticles<D>::for_each_row_in(const Grid& grid, const Vec<D>& x,
+                                           VisitRow&& visit_row) const {
     const Cell centre = cell_of(grid, x);
     if (!grid.near_any.empty()) {
         bool inside = true;
@@ -51,25 +52,54 @@ void BoundaryParticles<D>::for_each_in(const Grid& grid, const Vec<D>& x, Visit&
         if (lo[a] > hi[a])
             return; // far outside the grid's box
     }
+    // The cells along x are consecutive in the grid (cell_index), so the
+    // lo..hi cells of a row are one range of entries, in the cells' order.
+    auto visit_cells = [&](Cell first, Cell last) {
+        visit_row(grid.cell_start[cell_index(grid, first)],
+                  grid.cell_start[cell_index(grid, last) + 1]);
+    };
+    if constexpr (D == 2) {
+        for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+            visit_cells(Cell(lo[0], j), Cell(hi[0], j));
+    } else {
+        for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                visit_cells(Cell(lo[0], j, k), Cell(hi[0], j, k));
+    }
+}
+
+template <int D>
+template <bool Moving, class Visit>
+void BoundaryParticles<D>::for_each_in(const Grid& grid, const Vec<D>& x, Visit&& visit) const {
     const Real r2 = h_ * h_;
-    auto visit_cell = [&](const Cell& c) {
-        const std::size_t k = cell_index(grid, c);
-        for (std::uint32_t e = grid.cell_start[k]; e < grid.cell_start[k + 1]; ++e) {
+    for_each_row_in(grid, x, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t e = begin; e < end; ++e) {
             const std::uint32_t b = Moving ? moving_order_[e] : e;
             if (squared_length<D>(x - positions_[b]) < r2)
                 visit(b);
         }
-    };
-    if constexpr (D == 2) {
-        for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
-            for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
-                visit_cell(Cell(i, j));
-    } else {
-        for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
-            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
-                for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
-                    visit_cell(Cell(i, j, k));
-    }
+    });
+}
+
+template <int D>
+template <bool Moving>
+std::size_t BoundaryParticles<D>::collect_in(const Grid& grid, const Vec<D>& x,
+                                             std::vector<std::uint32_t>& out,
+                                             std::size_t count) const {
+    const Real r2 = h_ * h_;
+    for_each_row_in(grid, x, [&](std::uint32_t begin, std::uint32_t end) {
+        if (out.size() < count + (end - begin))
+            out.resize(std::max(2 * out.size(), count + (end - begin)));
+        // Every candidate written, the count moved past the near ones: no
+        // branch to mispredict (about a third of the candidates are near).
+        std::uint32_t* const to = out.data();
+        for (std::uint32_t e = begin; e < end; ++e) {
+            const std::uint32_t b = Moving ? moving_order_[e] : e;
+            to[count] = b;
+            count += squared_length<D>(x - positions_[b]) < r2;
+        }
+    });
+    return count;
 }
 
 template <int D>
@@ -403,25 +433,32 @@ SPHCLIP_CLONED void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>
     // are then copied in order (the same list for any thread count).
     constexpr std::size_t block = 256;
     const std::size_t blocks = (n + block - 1) / block;
-    if (block_rows_.size() < blocks)
+    if (block_rows_.size() < blocks) {
         block_rows_.resize(blocks);
+        block_counts_.resize(blocks);
+    }
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t k = 0; k < blocks; ++k) {
+        // rows holds the block's lists in its first `count` entries, and
+        // room beyond (collect_in writes candidates there).
         std::vector<std::uint32_t>& rows = block_rows_[k];
-        rows.clear();
+        std::size_t count = 0;
         for (std::size_t i = k * block, end = std::min(n, i + block); i < end; ++i) {
-            const std::size_t before = rows.size();
-            for_each_near(query[i], [&](std::uint32_t b) { rows.push_back(b); });
-            out.start[i + 1] = static_cast<std::uint32_t>(rows.size() - before);
+            const std::size_t before = count;
+            count = collect_in<false>(grid_, query[i], rows, count);
+            if (has_moving())
+                count = collect_in<true>(moving_grid_, query[i], rows, count);
+            out.start[i + 1] = static_cast<std::uint32_t>(count - before);
         }
+        block_counts_[k] = count;
     }
     for (std::size_t i = 0; i < n; ++i)
         out.start[i + 1] += out.start[i];
     out.size_for(out.start[n]);
 #pragma omp parallel for schedule(static)
     for (std::size_t k = 0; k < blocks; ++k)
-        std::copy(block_rows_[k].begin(), block_rows_[k].end(),
-                  out.index.begin() + std::ptrdiff_t(out.start[k * block]));
+        std::copy_n(block_rows_[k].begin(), block_counts_[k],
+                    out.index.begin() + std::ptrdiff_t(out.start[k * block]));
 }
 
 template class BoundaryParticles<2>;

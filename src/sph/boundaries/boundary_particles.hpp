@@ -127,6 +127,15 @@ class BoundaryParticles {
     // grid) or moving_order_[e] (the moving one).
     template <bool Moving, class Visit>
     void for_each_in(const Grid& grid, const Vec<D>& x, Visit&& visit) const;
+    // The same, writing the near ones to out[count...] (growing it, never
+    // shrinking it); returns the new count.
+    template <bool Moving>
+    std::size_t collect_in(const Grid& grid, const Vec<D>& x, std::vector<std::uint32_t>& out,
+                           std::size_t count) const;
+    // visit_row(begin, end) for each row of 3 (or fewer) cells along x
+    // around x's cell: the entries begin..end of `grid`.
+    template <class VisitRow>
+    void for_each_row_in(const Grid& grid, const Vec<D>& x, VisitRow&& visit_row) const;
 
     std::vector<Vec<D>> positions_; // static ones sorted by cell, then moving ones
     std::vector<Real> volumes_;     // m^3 (m^2 in 2D)
@@ -146,6 +155,7 @@ class BoundaryParticles {
     // Scratch of find_neighbours(): a block of query rows' walls each, as
     // much memory as the lists it fills (it runs one call at a time).
     mutable std::vector<std::vector<std::uint32_t>> block_rows_;
+    mutable std::vector<std::size_t> block_counts_; // entries of block_rows_ in use
 };
 
 } // namespace sph

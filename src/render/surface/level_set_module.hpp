@@ -2,7 +2,7 @@
 // The 3D surface's OpenVDB part (level_set_vdb.cpp) is a module of its own,
 // libsphclip_vdb.so beside the program proper, loaded when a run first
 // reconstructs a 3D surface: OpenVDB (with TBB, Boost and its codecs) cost
-// every start 0.07 s in the dynamic loader (platform/shared_library.hpp).
+// every start 0.05 s in the dynamic loader (platform/shared_library.hpp).
 // level_set_module.cpp loads it and forwards reconstruct.hpp's 3D functions
 // to the table it exports.
 

@@ -9,6 +9,7 @@
 #include "support/text.hpp"
 
 extern "C" {
+#include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
 }
 
@@ -288,6 +289,38 @@ TEST_CASE("output folder: a frames/ the run cannot write to is refused before an
          {"run.json", "run.json.partial", "stats.csv", "clip.mp4", "clip.mp4.partial"})
         CHECK_FALSE(fs::exists(out / name));
     fs::permissions(out / "frames", fs::perms::owner_all);
+}
+
+TEST_CASE("output folder: a run whose FFmpeg cannot be loaded writes nothing; --no-mp4 needs none",
+          "[contract][output_folder]") {
+    TempFolder tmp;
+    write_text(tmp / "scene.json", small_scene);
+    // FFmpeg is loaded when a run starts to write video, not linked
+    // (src/platform/shared_library.hpp): a libavcodec that cannot be loaded,
+    // found first on the library path, stands for a server without FFmpeg.
+    fs::create_directories(tmp / "lib");
+    write_text(tmp / "lib" / fmt::format("libavcodec.so.{}", LIBAVCODEC_VERSION_MAJOR), "");
+    const auto run = [&](const fs::path& out, const std::string& more) {
+        const std::string command = fmt::format(
+            "cd {} && LD_LIBRARY_PATH={} {} run {} --out {} --threads 1 {} > {} 2>&1",
+            shell_quote(tmp.path().string()), shell_quote((tmp / "lib").string()),
+            shell_quote(SPHCLIP_EXE), shell_quote((tmp / "scene.json").string()),
+            shell_quote(out.string()), more, shell_quote((tmp / "log").string()));
+        const int status = std::system(command.c_str());
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    };
+    CHECK(run(tmp / "out", "") == 1);
+    std::string log = read_text(tmp / "log");
+    INFO(log);
+    CHECK(contains(log, "cannot write clip.mp4: cannot load the shared library libavcodec.so."));
+    CHECK(contains(log, "--no-mp4 runs need no FFmpeg"));
+    CHECK_FALSE(fs::exists(tmp / "out")); // refused before the folder was made
+    // The same run without the video: its frames, no FFmpeg loaded.
+    CHECK(run(tmp / "frames_only", "--no-mp4 --quiet") == 0);
+    log = read_text(tmp / "log");
+    INFO(log);
+    CHECK(fs::exists(tmp / "frames_only" / "frames" / "frame_00001.png"));
+    CHECK_FALSE(fs::exists(tmp / "frames_only" / "clip.mp4"));
 }
 
 TEST_CASE("output folder: a re-run removes every output of the earlier run, and says so",

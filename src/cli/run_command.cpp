@@ -9,6 +9,7 @@
 #include "cli/set_options.hpp"
 #include "cli/stop_signals.hpp"
 #include "output/files.hpp"
+#include "output/mp4_writer.hpp"
 #include "parallel/world.hpp"
 #include "render/fonts.hpp"
 #include "render/gl_context.hpp"
@@ -223,12 +224,12 @@ int run_command(const RunOptions& given) {
     } catch (const std::runtime_error& e) {
         throw InputError("environment", "SPHCLIP_SIMD", e.what());
     }
-    if (scene.dimension == 3 && !surface_3d_available() &&
+    if (scene.dimension == 3 &&
         std::find(options.exports.begin(), options.exports.end(), "surface") !=
-            options.exports.end())
+            options.exports.end() &&
+        !surface_3d_available())
         throw InputError("command line", "--export",
-                         "surface in 3D needs OpenVDB, and this sphclip was built without it "
-                         "(install libopenvdb-dev and configure with -DSPHCLIP_OPENVDB=ON)");
+                         "surface in 3D needs OpenVDB: " + surface_3d_unavailable_reason());
     const fs::path folder = recorded      ? rerun_folder(options, scene)
                             : options.out ? *options.out
                                           : output_folder(scene);
@@ -253,6 +254,18 @@ int run_command(const RunOptions& given) {
     if (options.png || options.mp4)
         gl_context = options.backend.empty() ? make_gl_context(scene.render.backend)
                                              : make_gl_context(std::string_view(options.backend));
+    // The 3D surface's OpenVDB module, loaded here too (the scene check
+    // knows only whether the build has it).
+    if ((options.png || options.mp4) && scene.dimension == 3 &&
+        scene.render.style == FluidStyle::surface && !surface_3d_available())
+        throw InputError(scene.file, "render.style",
+                         "surface in 3D needs OpenVDB: " + surface_3d_unavailable_reason());
+    // The MP4's encoder too (FFmpeg is loaded here, not at start:
+    // platform/shared_library.hpp): without it, nothing is written.
+    if (options.mp4)
+        if (const std::string problem = Mp4Writer::unavailable_reason(); !problem.empty())
+            throw std::runtime_error("cannot write clip.mp4: " + problem +
+                                     " (--no-mp4 runs need no FFmpeg)");
     // Over MPI ranks, depth compositing asked for where it cannot draw.
     if (parallel::size() > 1 && (options.png || options.mp4) &&
         scene.render.mpi_composite == MpiComposite::depth)

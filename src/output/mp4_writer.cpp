@@ -292,10 +292,16 @@ void Mp4Writer::finish() {
 }
 
 bool Mp4Writer::available() {
+    return unavailable_reason().empty();
+}
+
+std::string Mp4Writer::unavailable_reason() {
     try {
-        return av().avcodec_find_encoder_by_name("libx264") != nullptr;
-    } catch (const std::runtime_error&) {
-        return false; // no FFmpeg to load
+        if (!av().avcodec_find_encoder_by_name("libx264"))
+            return "this libavcodec has no libx264 encoder";
+        return "";
+    } catch (const std::runtime_error& e) {
+        return e.what(); // no FFmpeg to load: the library and the loader's reason
     }
 }
 

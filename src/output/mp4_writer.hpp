@@ -65,6 +65,9 @@ class Mp4Writer {
     std::uint64_t frames_written() const { return frames_written_; }
     // Whether this libavcodec has the libx264 encoder.
     static bool available();
+    // Why no MP4 can be written here (FFmpeg's libraries cannot be loaded,
+    // or libavcodec has no libx264), or "" when one can: loads FFmpeg.
+    static std::string unavailable_reason();
 
   private:
     // libav state lives in the .cpp so that users of this header need no

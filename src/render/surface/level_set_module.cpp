@@ -38,11 +38,15 @@ const LevelSetFunctions& level_set_functions() {
 } // namespace
 
 bool surface_3d_available() {
+    return surface_3d_unavailable_reason().empty();
+}
+
+std::string surface_3d_unavailable_reason() {
     try {
         level_set_functions();
-        return true;
-    } catch (const std::runtime_error&) {
-        return false;
+        return "";
+    } catch (const std::runtime_error& e) {
+        return e.what(); // the module and the loader's reason
     }
 }
 

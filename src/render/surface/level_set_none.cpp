@@ -18,6 +18,10 @@ namespace {
 bool surface_3d_available() {
     return false;
 }
+std::string surface_3d_unavailable_reason() {
+    return "this sphclip was built without OpenVDB (install libopenvdb-dev and configure with "
+           "-DSPHCLIP_OPENVDB=ON)";
+}
 std::shared_ptr<const LevelSet> make_level_set(const Snapshot&, double, const SurfaceSettings&,
                                                SurfaceSteps*) {
     no_openvdb();

@@ -41,8 +41,8 @@ Surface reconstruct_surface(const Snapshot& frame, ColourField field, double spa
         return s;
     }
     if (!surface_3d_available())
-        throw std::runtime_error("render.style = surface in 3D needs OpenVDB, and this sphclip "
-                                 "was built without it (-DSPHCLIP_OPENVDB=OFF or not found)");
+        throw std::runtime_error("a surface in 3D needs OpenVDB: " +
+                                 surface_3d_unavailable_reason());
     s.level_set = make_level_set(frame, spacing, settings, &s.steps);
     s.mesh = mesh_level_set(*s.level_set, &s.steps);
     s.reconstruction_seconds = seconds_since(start);

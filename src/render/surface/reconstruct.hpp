@@ -21,8 +21,11 @@
 namespace sph {
 
 // Whether this build can reconstruct a 3D surface (OpenVDB found at build
-// time; -DSPHCLIP_OPENVDB=OFF turns it off). 2D needs nothing.
+// time; -DSPHCLIP_OPENVDB=OFF turns it off; its module loaded: this loads
+// it). 2D needs nothing.
 bool surface_3d_available();
+// Why not, or "" when it can.
+std::string surface_3d_unavailable_reason();
 
 // The scalar each particle is coloured by: `field` velocity (the speed),
 // density or pressure, as the spheres are.

@@ -301,11 +301,11 @@ TEST_CASE("output folder: a run whose FFmpeg cannot be loaded writes nothing; --
     fs::create_directories(tmp / "lib");
     write_text(tmp / "lib" / fmt::format("libavcodec.so.{}", LIBAVCODEC_VERSION_MAJOR), "");
     const auto run = [&](const fs::path& out, const std::string& more) {
-        const std::string command = fmt::format(
-            "cd {} && LD_LIBRARY_PATH={} {} run {} --out {} --threads 1 {} > {} 2>&1",
-            shell_quote(tmp.path().string()), shell_quote((tmp / "lib").string()),
-            shell_quote(SPHCLIP_EXE), shell_quote((tmp / "scene.json").string()),
-            shell_quote(out.string()), more, shell_quote((tmp / "log").string()));
+        const std::string command =
+            fmt::format("cd {} && LD_LIBRARY_PATH={} {} run {} --out {} --threads 1 {} > {} 2>&1",
+                        shell_quote(tmp.path().string()), shell_quote((tmp / "lib").string()),
+                        shell_quote(SPHCLIP_EXE), shell_quote((tmp / "scene.json").string()),
+                        shell_quote(out.string()), more, shell_quote((tmp / "log").string()));
         const int status = std::system(command.c_str());
         return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     };

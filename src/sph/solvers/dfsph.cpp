@@ -66,6 +66,8 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     stiffness_.resize(n);
     stiffness_sum_.resize(n);
     source_.resize(n);
+    residual_.resize(n);
+    next_sum_.resize(n);
     // With the lists' padding: the loops over a row read whole vectors.
     resize_with_headroom(gradient_, context.neighbours.pair_count() + simd_lanes);
     resize_with_headroom(wall_gradient_,
@@ -223,16 +225,32 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
                         });
             if (!wall_motion_.empty())
                 rate -= wall_mirror * wall_motion_[i];
-            source_[i] = target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
+            const Real source =
+                target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
+            source_[i] = source;
+            // The residual of a pressure that must stay >= 0: compression
+            // anywhere, and expansion where there is pressure to give back.
+            residual_[i] = sum[i] > 0 ? std::abs(source) : std::max(source, Real(0));
+            // Relaxed, projected Jacobi. Relaxed: the plain Jacobi update
+            // (the factor ignores how neighbours respond) overshoots and,
+            // with the 20-40 neighbours of our kernels, diverges in a deep
+            // tank; half of it converges, as in IISPH (Ihmsen et al. 2014,
+            // omega = 0.5). Projected: the summed stiffness (a pressure)
+            // never goes below zero, so the fluid does not pull itself
+            // together, but an expanding particle gives back pressure it was
+            // given before, which the warm start would otherwise only ever
+            // add to. Computed here, in the same pass (one fewer over the
+            // particles and one fewer wait for the threads an iteration), and
+            // taken below unless the solve stops.
+            const Real updated = std::max(sum[i] + omega * source * factor_[i], Real(0));
+            stiffness_[i] = updated - sum[i];
+            next_sum_[i] = updated;
         }
-        // The residual of a pressure that must stay >= 0: compression
-        // anywhere, and expansion where there is pressure to give back.
         // Summed in particle order, not by an OpenMP reduction, so that the
         // iteration count, and so every bit, is the same for any thread
         // count, and over ranks for any rank count.
-        const Real error_sum = context.sum_in_particle_order(n, [&](std::size_t i) {
-            return sum[i] > 0 ? std::abs(source_[i]) : std::max(source_[i], Real(0));
-        });
+        const Real error_sum =
+            context.sum_in_particle_order(n, [&](std::size_t i) { return residual_[i]; });
         // Mean relative density error (density) or density change within one
         // step (divergence): dt * mean(residual) / rho0 in both cases.
         const Real error = particles > 0 ? dt * error_sum / (particles * rho0) : 0;
@@ -252,20 +270,7 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
         const bool converged = error <= tolerance && iterations >= settings.min_iterations;
         if (converged || iterations >= settings.max_iterations)
             break;
-            // Relaxed, projected Jacobi. Relaxed: the plain Jacobi update (the
-            // factor ignores how neighbours respond) overshoots and, with the
-            // 20-40 neighbours of our kernels, diverges in a deep tank; half of it
-            // converges, as in IISPH (Ihmsen et al. 2014, omega = 0.5). Projected:
-            // the summed stiffness (a pressure) never goes below zero, so the fluid
-            // does not pull itself together, but an expanding particle gives back
-            // pressure it was given before, which the warm start would otherwise
-            // only ever add to.
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
-            const Real updated = std::max(sum[i] + omega * source_[i] * factor_[i], Real(0));
-            stiffness_[i] = updated - sum[i];
-            sum[i] = updated;
-        }
+        sum.swap(next_sum_);
         // Over ranks the halo's stiffnesses, then its corrected velocities,
         // are their owners' (a halo particle's own source is incomplete).
         context.share_halo(stiffness_);

@@ -85,35 +85,6 @@ SPHCLIP_INLINE_IN_CLONES auto sum_over_pairs(const NeighbourList& list, std::siz
     }
 }
 
-// The same sum for terms that read the neighbour's own data (v_j, s_j),
-// where vector gathers cost more than they save (dfsph.cpp): scalar, but
-// in four partial sums, pair e into sum e mod 4, added as (0 + 1) + (2 + 3)
-// at the end. One running sum makes each pair wait for the last one's
-// addition (4 cycles); four let four pairs' additions overlap. The order
-// is still set by the row alone.
-template <class Term>
-SPHCLIP_INLINE_IN_CLONES auto sum_over_pairs_in_four(const NeighbourList& list, std::size_t i,
-                                                     const Term& term) {
-    using T = std::decay_t<decltype(term(std::size_t(0), std::uint32_t(0)))>;
-    const std::size_t begin = list.start[i], end = list.start[i + 1];
-    const std::uint32_t* index = list.index.data();
-    T s0(0), s1(0), s2(0), s3(0);
-    std::size_t e = begin;
-    for (; e + 4 <= end; e += 4) {
-        s0 += term(e, index[e]);
-        s1 += term(e + 1, index[e + 1]);
-        s2 += term(e + 2, index[e + 2]);
-        s3 += term(e + 3, index[e + 3]);
-    }
-    if (e < end)
-        s0 += term(e, index[e]);
-    if (e + 1 < end)
-        s1 += term(e + 1, index[e + 1]);
-    if (e + 2 < end)
-        s2 += term(e + 2, index[e + 2]);
-    return (s0 + s1) + (s2 + s3);
-}
-
 // sum over the neighbours j of particle i of term(j).
 template <class Term>
 SPHCLIP_INLINE_IN_CLONES auto sum_over_neighbours(const NeighbourList& list, std::size_t i,

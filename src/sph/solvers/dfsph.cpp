@@ -218,11 +218,12 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
             // their terms are a few products, and gathering v_j (s_j) into
             // vector registers costs more than it saves (measured: both
             // solves 1.8-3x slower with AVX-512 gathers).
+            // One running sum: four partial ones (the additions overlapping)
+            // were 2% faster in 3D and 20% slower in 2D (measured).
             const Vec<D> v_i = state.velocity[i];
-            Real rate = wall_mirror * glm::dot(wall_sum[i], v_i) +
-                        sum_over_pairs_in_four(pairs, i, [&](std::size_t e, std::uint32_t j) {
-                            return glm::dot(Vec<D>(gradient[e]), v_i - state.velocity[j]);
-                        });
+            Real rate = wall_mirror * glm::dot(wall_sum[i], v_i);
+            for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
+                rate += glm::dot(Vec<D>(gradient[e]), v_i - state.velocity[pairs.index[e]]);
             if (!wall_motion_.empty())
                 rate -= wall_mirror * wall_motion_[i];
             const Real source =
@@ -298,10 +299,10 @@ void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>&
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
         const Real s_i = stiffness[i];
-        const Vec<D> dv = sum_over_pairs_in_four(pairs, i, [&](std::size_t e, std::uint32_t j) {
-            return (s_i + stiffness[j]) * Vec<D>(gradient[e]);
-        });
-        state.velocity[i] -= wall_mirror * s_i * wall_sum[i] + dv;
+        Vec<D> dv = -wall_mirror * s_i * wall_sum[i];
+        for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
+            dv -= (s_i + stiffness[pairs.index[e]]) * Vec<D>(gradient[e]);
+        state.velocity[i] += dv;
     }
 }
 

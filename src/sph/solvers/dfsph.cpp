@@ -217,7 +217,8 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
             // Plain loops over the fluid pairs here and in correct_velocities:
             // their terms are a few products, and gathering v_j (s_j) into
             // vector registers costs more than it saves (measured: both
-            // solves 1.8-3x slower with AVX-512 gathers).
+            // solves 1.8-3x slower with AVX-512 gathers; 1.24-1.39x with
+            // the rows' sums 8 pairs wide, docs/benchmarks.md).
             // One running sum: four partial ones (the additions overlapping)
             // were 2% faster in 3D and 20% slower in 2D (measured).
             const Vec<D> v_i = state.velocity[i];

@@ -90,12 +90,23 @@ accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourL
             Real factor = pi_over_rho2 + pressure_term[j];
             if constexpr (artificial)
                 factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
-            Vec<D> term = -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
-            if constexpr (laminar)
-                term +=
-                    (viscous_scale * morris.fluid(kernel, params.mass, state.density[j], r, r2)) *
-                    v_ij;
-            return term;
+            if constexpr (Kernel::smooth_at_origin) {
+                // grad W = (dW/dr / r) x: one factor for both terms.
+                const Real f = kernel.dW_over_r(r);
+                Vec<D> term = -(params.mass * factor * f) * x_ij;
+                if constexpr (laminar)
+                    term += (viscous_scale *
+                             morris.fluid_from_factor(params.mass, state.density[j], r2, f)) *
+                            v_ij;
+                return term;
+            } else {
+                Vec<D> term = -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
+                if constexpr (laminar)
+                    term += (viscous_scale *
+                             morris.fluid(kernel, params.mass, state.density[j], r, r2)) *
+                            v_ij;
+                return term;
+            }
         });
         if (boundary) {
             const auto xb = boundary->positions();

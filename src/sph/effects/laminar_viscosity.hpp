@@ -34,6 +34,13 @@ struct MorrisViscosity {
         const Real x_dot_grad = r * kernel.dW(r);
         return m * x_dot_grad / (rho_j * (r2 + eps));
     }
+    // The same from dW/dr / r, for a pass that has it for the pressure's
+    // gradient already: x . grad W = r^2 (dW/dr / r), so the kernel's
+    // derivative is not evaluated twice (wcsph's 3D pressure pass 154-172 ->
+    // 136-149 ns a particle-step in five interleaved runs, docs/benchmarks.md).
+    Real fluid_from_factor(Real m, Real rho_j, Real r2, Real dW_over_r) const {
+        return m * r2 * dW_over_r / (rho_j * (r2 + eps));
+    }
     // A boundary particle of volume V_b (fluid of density rho0, mass rho0 V_b).
     template <class Kernel>
     Real wall(const Kernel& kernel, Real volume, Real r, Real r2) const {

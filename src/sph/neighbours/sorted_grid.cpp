@@ -127,54 +127,6 @@ compress_close(std::size_t count, const Real* __restrict distance2,
 }
 #endif
 
-#ifdef SPHCLIP_COMPRESS
-// keep_candidates' vector loop: the kept candidates' indices and sorted
-// positions, each compressed to the front of a register and stored whole (as
-// in compress_close). Returns how many candidates it went through.
-SPHCLIP_COMPRESS_TARGET std::size_t
-compress_candidates(std::size_t count, const Real* __restrict gap2, Real r2, std::uint32_t begin,
-                    const std::uint32_t* __restrict order, std::uint32_t* __restrict index,
-                    std::uint32_t* __restrict at, std::uint32_t& kept) {
-    const __m512d limit = _mm512_set1_pd(r2);
-    const __m256i step = _mm256_set1_epi32(8);
-    __m256i position = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(begin)),
-                                        _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    std::size_t m = 0;
-    for (; m + 8 <= count; m += 8) {
-        const __mmask8 close = _mm512_cmp_pd_mask(_mm512_loadu_pd(gap2 + m), limit, _CMP_LT_OQ);
-        const __m256i candidates = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(order + m));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(index + kept),
-                            _mm256_maskz_compress_epi32(close, candidates));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(at + kept),
-                            _mm256_maskz_compress_epi32(close, position));
-        kept += static_cast<std::uint32_t>(std::popcount(static_cast<unsigned>(close)));
-        position = _mm256_add_epi32(position, step);
-    }
-    return m;
-}
-#endif
-
-// The candidates of one run (sorted positions begin, begin + 1, ...; order =
-// their indices) whose gap is under r2: their indices to `index`, their
-// sorted positions to `at`, without a branch. Both have room for count + 8
-// entries. Returns how many it kept.
-std::uint32_t keep_candidates(std::size_t count, const Real* __restrict gap2, Real r2,
-                              std::uint32_t begin, const std::uint32_t* __restrict order,
-                              std::uint32_t* __restrict index, std::uint32_t* __restrict at) {
-    std::uint32_t kept = 0;
-    std::size_t m = 0;
-#ifdef SPHCLIP_COMPRESS
-    if (compress_runs())
-        m = compress_candidates(count, gap2, r2, begin, order, index, at, kept);
-#endif
-    for (; m < count; ++m) {
-        index[kept] = order[m];
-        at[kept] = begin + static_cast<std::uint32_t>(m);
-        kept += gap2[m] < r2;
-    }
-    return kept;
-}
-
 // The candidates closer than r2, other than `self`, written without a branch
 // (a neighbour is ~1 candidate in 8, a branch on it mispredicts). `row` has
 // room for `count` entries.
@@ -501,18 +453,16 @@ std::size_t SortedGrid<D>::gather_candidates(std::size_t cell, Real r2, Scratch&
     std::size_t total = 0;
     for (int k = 0; k < range_count; ++k)
         total += ranges[k].end - ranges[k].begin;
-    if (s.index.size() < total + 8) {
+    if (s.keyed.size() < total) {
         // With headroom (sph/headroom.hpp): a cell's candidates grow a few
-        // at a time as a fluid settles, and each growth would allocate. The
-        // 8 more: keep_candidates stores whole vectors.
-        const std::size_t grown = total + total / 4 + 8;
+        // at a time as a fluid settles, and each growth would allocate.
+        const std::size_t grown = total + total / 4;
         s.keyed.resize(grown);
         s.merged.resize(grown); // sort_by_index's
         s.run_ends.reserve(grown + 1);
         for (int a = 0; a < D; ++a)
             s.x[a].resize(grown);
         s.index.resize(grown);
-        s.at.resize(grown);
         s.distance2.resize(grown);
     }
 
@@ -531,30 +481,19 @@ std::size_t SortedGrid<D>::gather_candidates(std::size_t cell, Real r2, Scratch&
             squared_gaps(length, sorted_x_[0].data() + begin, sorted_x_[1].data() + begin,
                          sorted_x_[2].data() + begin, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2],
                          gap2);
-        count += keep_candidates(length, gap2, r2, begin, order_.data() + begin,
-                                 s.index.data() + count, s.at.data() + count);
-    }
-    // By index, so that every row comes out sorted. Already so when the
-    // particle arrays are stored in cell order and no particle has changed
-    // cells since (the test is one vector loop); otherwise merged.
-    bool ascending = true;
-    for (std::size_t m = 1; m < count; ++m)
-        ascending &= s.index[m - 1] < s.index[m];
-    if (!ascending) {
-        for (std::size_t m = 0; m < count; ++m)
-            s.keyed[m] = std::uint64_t(s.index[m]) << 32 | s.at[m];
-        sort_by_index(count, s);
-        for (std::size_t m = 0; m < count; ++m) {
-            s.index[m] = static_cast<std::uint32_t>(s.keyed[m] >> 32);
-            s.at[m] = static_cast<std::uint32_t>(s.keyed[m]);
+        for (std::uint32_t m = 0; m < length; ++m) {
+            s.keyed[count] = std::uint64_t(order_[begin + m]) << 32 | (begin + m);
+            count += gap2[m] < r2;
         }
     }
-    for (int a = 0; a < D; ++a) {
-        const Real* __restrict from = sorted_x_[a].data();
-        Real* __restrict to = s.x[a].data();
-        const std::uint32_t* __restrict at = s.at.data();
-        for (std::size_t m = 0; m < count; ++m)
-            to[m] = from[at[m]];
+    // By index, so that every row comes out sorted; already so when the
+    // particle arrays are stored in cell order.
+    sort_by_index(count, s);
+    for (std::size_t m = 0; m < count; ++m) {
+        const auto j = static_cast<std::uint32_t>(s.keyed[m]);
+        s.index[m] = static_cast<std::uint32_t>(s.keyed[m] >> 32);
+        for (int a = 0; a < D; ++a)
+            s.x[a][m] = sorted_x_[a][j];
     }
     return count;
 }

@@ -95,7 +95,6 @@ class SortedGrid final : public NeighbourSearch<D> {
         std::vector<std::uint32_t> run_ends; // where keyed's ascending runs end
         std::array<std::vector<Real>, D> x;  // the candidates of one cell, gathered
         std::vector<std::uint32_t> index;    // their indices in the caller's order
-        std::vector<std::uint32_t> at;       // their positions in the sorted arrays
         std::vector<Real> distance2;
         std::vector<std::uint32_t> rows; // this thread's neighbour rows, any order
     };

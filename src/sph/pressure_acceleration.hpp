@@ -128,8 +128,8 @@ accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourL
             const auto wall_velocity = boundary->velocities();
             // g / rho_i, once: a division per pair would cost as much as
             // the pair's other terms together.
-            const Vec<D> gravity_over_rho =
-                hydrostatic ? params.wall_gravity / state.density[i] : Vec<D>(0);
+            const Vec<D> gravity_over_rho = hydrostatic ? params.wall_gravity / state.density[i]
+                                                        : Vec<D>(0);
             a += sum_over_neighbours(boundary_neighbours, i, [&](std::uint32_t b) {
                 const Vec<D> x_ib = state.position[i] - xb[b];
                 const Real r2 = squared_length<D>(x_ib);

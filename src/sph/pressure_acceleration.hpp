@@ -88,31 +88,18 @@ accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourL
             const Real r = std::sqrt(r2);
             const Vec<D> v_ij = state.velocity[i] - state.velocity[j];
             Real factor = pi_over_rho2 + pressure_term[j];
+            if constexpr (artificial)
+                factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
             if constexpr (Kernel::smooth_at_origin) {
                 // grad W = (dW/dr / r) x: one factor for both terms.
                 const Real f = kernel.dW_over_r(r);
-                Real viscous = 0; // Morris's share, along v_ij
-                if constexpr (artificial && laminar) {
-                    // Pi = a / b and Morris's c / d over one division,
-                    // 1 / (b d): with the square root, divisions bound this
-                    // loop (docs/benchmarks.md, "One division a pair").
-                    const Real b = Pi.denominator(state.density[i] + state.density[j], r2);
-                    const Real d = morris.fluid_denominator(state.density[j], r2);
-                    const Real q = 1 / (b * d);
-                    factor += Pi.numerator(glm::dot(v_ij, x_ij)) * (d * q);
-                    viscous = morris.fluid_numerator(params.mass, r2, f) * (b * q);
-                } else if constexpr (artificial) {
-                    factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
-                } else if constexpr (laminar) {
-                    viscous = morris.fluid_from_factor(params.mass, state.density[j], r2, f);
-                }
                 Vec<D> term = -(params.mass * factor * f) * x_ij;
                 if constexpr (laminar)
-                    term += (viscous_scale * viscous) * v_ij;
+                    term += (viscous_scale *
+                             morris.fluid_from_factor(params.mass, state.density[j], r2, f)) *
+                            v_ij;
                 return term;
             } else {
-                if constexpr (artificial)
-                    factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
                 Vec<D> term = -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
                 if constexpr (laminar)
                     term += (viscous_scale *
@@ -126,10 +113,6 @@ accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourL
             const auto volume = boundary->volumes();
             // A local span, not boundary->velocity(b): the loop then vectorises.
             const auto wall_velocity = boundary->velocities();
-            // g / rho_i, once: a division per pair would cost as much as
-            // the pair's other terms together.
-            const Vec<D> gravity_over_rho = hydrostatic ? params.wall_gravity / state.density[i]
-                                                        : Vec<D>(0);
             a += sum_over_neighbours(boundary_neighbours, i, [&](std::uint32_t b) {
                 const Vec<D> x_ib = state.position[i] - xb[b];
                 const Real r2 = squared_length<D>(x_ib);
@@ -141,25 +124,16 @@ accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourL
                 // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise,
                 // p_b = max(p_i + rho_i g . (x_b - x_i), 0).
                 else if constexpr (hydrostatic)
-                    factor = pi_over_rho2 +
-                             std::max(pi_over_rho2 - glm::dot(gravity_over_rho, x_ib), Real(0));
-                Real viscous = 0; // Morris's share, along v_ib
-                if constexpr (artificial && laminar) {
-                    // One division for both, as for the fluid pairs.
-                    const Real b_pi = Pi.denominator(2 * state.density[i], r2);
-                    const Real d = morris.wall_denominator(r2);
-                    const Real q = 1 / (b_pi * d);
-                    factor += Pi.numerator(glm::dot(v_ib, x_ib)) * (d * q);
-                    viscous = morris.wall_numerator(kernel, volume[b], r) * (b_pi * q);
-                } else if constexpr (artificial) {
+                    factor =
+                        pi_over_rho2 + std::max(pi_over_rho2 - glm::dot(params.wall_gravity, x_ib) /
+                                                                   state.density[i],
+                                                Real(0));
+                if constexpr (artificial)
                     factor += Pi(glm::dot(v_ib, x_ib), 2 * state.density[i], r2);
-                } else if constexpr (laminar) {
-                    viscous = morris.wall(kernel, volume[b], r, r2);
-                }
                 Vec<D> term = -(params.rest_density * volume[b] * factor) *
                               boundary_gradient(kernel, x_ib, r);
                 if constexpr (laminar)
-                    term += (viscous_scale * viscous) * v_ib;
+                    term += (viscous_scale * morris.wall(kernel, volume[b], r, r2)) * v_ib;
                 return term;
             });
         }

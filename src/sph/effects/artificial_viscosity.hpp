@@ -62,16 +62,10 @@ struct MonaghanTerm {
     T eps;      // 0.01 h^2
 
     T operator()(T rate, T density_sum, T r2) const {
-        return numerator(rate) / denominator(density_sum, r2);
-    }
-    // Pi_ij's two sides, for a pass that shares one division among its terms
-    // (sph/pressure_acceleration.hpp).
-    T numerator(T rate) const {
         const T v_dot_x = rate < 0 ? rate : 0; // not std::min: its reference
                                                // keeps the loop scalar
-        return -nu_scale * v_dot_x;
+        return -nu_scale * v_dot_x / (density_sum * (r2 + eps));
     }
-    T denominator(T density_sum, T r2) const { return density_sum * (r2 + eps); }
     // The float term of the single-precision passes (sph/single_precision/).
     MonaghanTerm<float> single() const { return {float(nu_scale), float(eps)}; }
 };

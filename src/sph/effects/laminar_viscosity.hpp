@@ -39,22 +39,13 @@ struct MorrisViscosity {
     // derivative is not evaluated twice (wcsph's 3D pressure pass 154-172 ->
     // 136-149 ns a particle-step in five interleaved runs, docs/benchmarks.md).
     Real fluid_from_factor(Real m, Real rho_j, Real r2, Real dW_over_r) const {
-        return fluid_numerator(m, r2, dW_over_r) / fluid_denominator(rho_j, r2);
+        return m * r2 * dW_over_r / (rho_j * (r2 + eps));
     }
-    // Its two sides, for a pass that shares one division among its terms
-    // (sph/pressure_acceleration.hpp).
-    Real fluid_numerator(Real m, Real r2, Real dW_over_r) const { return m * r2 * dW_over_r; }
-    Real fluid_denominator(Real rho_j, Real r2) const { return rho_j * (r2 + eps); }
     // A boundary particle of volume V_b (fluid of density rho0, mass rho0 V_b).
     template <class Kernel>
     Real wall(const Kernel& kernel, Real volume, Real r, Real r2) const {
-        return wall_numerator(kernel, volume, r) / wall_denominator(r2);
+        return volume * r * kernel.dW(r) / (r2 + eps);
     }
-    template <class Kernel>
-    Real wall_numerator(const Kernel& kernel, Real volume, Real r) const {
-        return volume * r * kernel.dW(r);
-    }
-    Real wall_denominator(Real r2) const { return r2 + eps; }
     // Either, in float, from the neighbour's volume (m / rho_j, or V_b) and
     // x . grad W: the single-precision passes' term (sph/single_precision/).
     struct Single {

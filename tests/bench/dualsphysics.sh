@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# sphclip against DualSPHysics (CPU) on DualSPHysics's own 2D validation dam
+# break (issue 22, item 3; docs/benchmarks.md, "Against DualSPHysics"): both
+# from rest to the same simulated time, interleaved over ROUNDS rounds with
+# THREADS OpenMP threads each. Prints each run's wall seconds (the whole
+# process; DualSPHysics's case made by GenCase beforehand, untimed), its
+# steps and its fluid particle-steps per second.
+#
+#   tests/bench/dualsphysics.sh SPHCLIP DUALSPHYSICS GENCASE CASE_XML [DP] [STOP_AT] [ROUNDS] [THREADS]
+#
+# DUALSPHYSICS is a CPU build of DualSPHysics and GENCASE its case generator
+# of the same version, both built or taken in a scratch folder outside this
+# repository (docs/benchmarks.md says which and how). CASE_XML is
+# DualSPHysics's examples/main/01_DamBreak/CaseDambreakVal2D_Def.xml; a copy
+# is edited here: its spacing dp (0.02 m: 5,000 fluid particles; 0.01:
+# 20,000), TimeMax, TimeOut 0.1 s, its gauges left out (sphclip measures
+# none), and the keys DtFixed and DtFixedFile left out (DualSPHysics 5.0
+# reads DtFixed as a file's name). sphclip runs
+# tests/bench/peers/dualsphysics_dambreak_val2d.json at the same dp.
+set -euo pipefail
+sphclip=${1:?usage: dualsphysics.sh SPHCLIP DUALSPHYSICS GENCASE CASE_XML [DP] [STOP_AT] [ROUNDS] [THREADS]}
+dualsphysics=${2:?DUALSPHYSICS}
+gencase=${3:?GENCASE}
+case_xml=${4:?CASE_XML}
+dp=${5:-0.02}
+stop_at=${6:-1.0}
+rounds=${7:-3}
+threads=${8:-2}
+here=$(cd "$(dirname "$0")" && pwd)
+ours="$here/peers/dualsphysics_dambreak_val2d.json"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+python3 - "$case_xml" "$work/Val2D_Def.xml" "$dp" "$stop_at" <<'PY'
+import sys
+import xml.etree.ElementTree as ET
+source, target, dp, stop_at = sys.argv[1:]
+tree = ET.parse(source)
+root = tree.getroot()
+root.find("casedef/geometry/definition").set("dp", dp)
+execution = root.find("execution")
+special = execution.find("special")
+if special is not None:
+    execution.remove(special)
+parameters = execution.find("parameters")
+for p in list(parameters.findall("parameter")):
+    key = p.get("key")
+    if key in ("DtFixed", "DtFixedFile"):
+        parameters.remove(p)
+    elif key == "TimeMax":
+        p.set("value", stop_at)
+    elif key == "TimeOut":
+        p.set("value", "0.1")
+tree.write(target, encoding="UTF-8", xml_declaration=True)
+PY
+(cd "$work" && "$gencase" Val2D_Def case/Val2D -save:all > gencase.log 2>&1) ||
+    { cat "$work/gencase.log"; exit 1; }
+
+peer() {
+    rm -rf "$work/peer"
+    OMP_NUM_THREADS=$threads "$dualsphysics" "$work/case/Val2D" "$work/peer" -cpu \
+        -ompthreads:"$threads" -svres:1 > "$work/peer.log" 2>&1
+}
+mine() {
+    "$sphclip" run "$ours" --set fluid.spacing="$dp" --threads "$threads" --duration "$stop_at" \
+        --no-png --no-mp4 --out "$work/ours" > "$work/ours.log" 2>&1
+}
+seconds() { local t0 t1; t0=$(date +%s.%N); "$@"; t1=$(date +%s.%N); echo "$t1 - $t0" | bc; }
+
+echo "# $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg); $threads threads; dp $dp m; to t = $stop_at s"
+echo "round,DualSPHysics_s,sphclip_s,DualSPHysics_steps,sphclip_steps,DualSPHysics_fluid_particles,sphclip_fluid_particles,DualSPHysics_M_fluid_particle_steps_per_s,sphclip_M_fluid_particle_steps_per_s"
+for round in $(seq 1 "$rounds"); do
+    p=$(seconds peer)
+    o=$(seconds mine)
+    # DualSPHysics's Run.csv: Np;...;Steps (10th);...;Nbound (22nd).
+    read -r peer_steps peer_fluid < <(awk -F';' 'NR == 2 { print $10, $4 - $22 }' "$work/peer/Run.csv")
+    steps=$(tail -1 "$work/ours/stats.csv" | cut -d, -f3)
+    fluid=$(grep -o '[0-9]* particles' "$work/ours.log" | head -1 | cut -d' ' -f1)
+    echo "$round,$p,$o,$peer_steps,$steps,$peer_fluid,$fluid,$(echo "scale=3; $peer_steps * $peer_fluid / $p / 1000000" | bc),$(echo "scale=3; $steps * $fluid / $o / 1000000" | bc)"
+done
+echo "# load at the end $(cut -d' ' -f1-3 /proc/loadavg)"

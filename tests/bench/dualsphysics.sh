@@ -56,26 +56,44 @@ PY
 (cd "$work" && "$gencase" Val2D_Def case/Val2D -save:all > gencase.log 2>&1) ||
     { cat "$work/gencase.log"; exit 1; }
 
+# A failed run stops the script with the end of its log, not a time.
+ran() {
+    local log=$1
+    shift
+    "$@" > "$log" 2>&1 || { echo "dualsphysics.sh: failed: $*" >&2; tail -20 "$log" >&2; return 1; }
+}
 peer() {
     rm -rf "$work/peer"
-    OMP_NUM_THREADS=$threads "$dualsphysics" "$work/case/Val2D" "$work/peer" -cpu \
-        -ompthreads:"$threads" -svres:1 > "$work/peer.log" 2>&1
+    OMP_NUM_THREADS=$threads ran "$work/peer.log" "$dualsphysics" "$work/case/Val2D" "$work/peer" \
+        -cpu -ompthreads:"$threads" -svres:1
 }
 mine() {
-    "$sphclip" run "$ours" --set fluid.spacing="$dp" --threads "$threads" --duration "$stop_at" \
-        --no-png --no-mp4 --out "$work/ours" > "$work/ours.log" 2>&1
+    ran "$work/ours.log" "$sphclip" run "$ours" --set fluid.spacing="$dp" --threads "$threads" \
+        --duration "$stop_at" --no-png --no-mp4 --out "$work/ours"
 }
-seconds() { local t0 t1; t0=$(date +%s.%N); "$@"; t1=$(date +%s.%N); echo "$t1 - $t0" | bc; }
+seconds() {
+    local t0 t1
+    t0=$(date +%s.%N)
+    "$@" || return 1
+    t1=$(date +%s.%N)
+    echo "$t1 - $t0" | bc
+}
 
 echo "# $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg); $threads threads; dp $dp m; to t = $stop_at s"
 echo "round,DualSPHysics_s,sphclip_s,DualSPHysics_steps,sphclip_steps,DualSPHysics_fluid_particles,sphclip_fluid_particles,DualSPHysics_M_fluid_particle_steps_per_s,sphclip_M_fluid_particle_steps_per_s"
 for round in $(seq 1 "$rounds"); do
-    p=$(seconds peer)
-    o=$(seconds mine)
+    p=$(seconds peer) || exit 1
+    o=$(seconds mine) || exit 1
     # DualSPHysics's Run.csv: Np;...;Steps (10th);...;Nbound (22nd).
     read -r peer_steps peer_fluid < <(awk -F';' 'NR == 2 { print $10, $4 - $22 }' "$work/peer/Run.csv")
-    steps=$(tail -1 "$work/ours/stats.csv" | cut -d, -f3)
-    fluid=$(grep -o '[0-9]* particles' "$work/ours.log" | head -1 | cut -d' ' -f1)
+    # stats.csv: frame,time,steps,dt,particles,... sphclip stops at its last
+    # whole frame (the scene's 10 fps), so a STOP_AT between frames would
+    # compare unequal times: refused.
+    IFS=, read -r _ reached steps _ fluid _ < <(tail -1 "$work/ours/stats.csv")
+    if [ "$(echo "$reached - $stop_at < -0.000001" | bc)" = 1 ]; then
+        echo "dualsphysics.sh: sphclip stopped at t = $reached s, its last frame before $stop_at s: give STOP_AT as a multiple of 0.1 s" >&2
+        exit 1
+    fi
     echo "$round,$p,$o,$peer_steps,$steps,$peer_fluid,$fluid,$(echo "scale=3; $peer_steps * $peer_fluid / $p / 1000000" | bc),$(echo "scale=3; $steps * $fluid / $o / 1000000" | bc)"
 done
 echo "# load at the end $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -425,6 +425,36 @@ TEST_CASE("the duration and fps flags change the number of frames", "[cli]") {
     CHECK(frames_with({"--fps", "100", "--set", "fps=20"}) == 6);
 }
 
+TEST_CASE("a duration between two frames ends the run at the duration", "[cli]") {
+    TempFolder tmp;
+    const fs::path scene = write_scene(tmp, tiny_2d);
+    const fs::path out = tmp / "out";
+    auto times_with = [&](const std::vector<std::string>& flags) {
+        const auto result = run_scene(tmp, scene, out, flags);
+        INFO(result.output);
+        REQUIRE(result.exit_code == 0);
+        std::vector<double> times;
+        const Csv stats = read_csv(out / "stats.csv");
+        for (std::size_t k = 0; k < stats.rows.size(); ++k)
+            times.push_back(stats.number(k, "time"));
+        return times;
+    };
+    // 0.06 s at 40 fps: the frames at 0, 0.025 and 0.05 s, then one at 0.06.
+    const auto between = times_with({"--duration", "0.06"});
+    REQUIRE(between.size() == 4);
+    CHECK(between[1] == Approx(0.025));
+    CHECK(between[2] == Approx(0.05));
+    CHECK(between[3] == Approx(0.06));
+    // Shorter than one frame: the run still simulates to the duration.
+    const auto short_run = times_with({"--duration", "0.01"});
+    REQUIRE(short_run.size() == 2);
+    CHECK(short_run[0] == 0);
+    CHECK(short_run[1] == Approx(0.01));
+    CHECK(json::parse(read_text(out / "run.json")).at("status") == "completed");
+    // A whole number of frames gets no extra one, round-off or not.
+    CHECK(times_with({"--duration", "0.075"}).size() == 4); // 3 x 1/40 s
+}
+
 TEST_CASE("one thread and two threads write the same data", "[cli]") {
     TempFolder tmp;
     // 20 x 20 particles, so that both threads have work; 71 steps.

@@ -161,7 +161,7 @@ class ClipRun {
                                       return parallel::make_rank_partition<D>(params, effects,
                                                                               scene.file);
                                   })),
-          frames_(static_cast<std::uint64_t>(std::floor(scene.duration * scene.fps + 1e-9)) + 1),
+          frames_(frame_count(scene.duration, scene.fps)),
           progress_(progress_mode(options.progress, options.quiet || !parallel::leader(),
                                   isatty(STDOUT_FILENO)),
                     options.progress_interval_s) {
@@ -320,10 +320,22 @@ class ClipRun {
                 render_->gl_info().version);
     }
 
+    // Frames at k / fps, and one more at the duration when it falls between
+    // two: a run always ends at the simulated time it was asked for (0.05 s
+    // at 10 fps is frames at 0 and 0.05 s, not frame 0 alone).
+    static std::uint64_t frame_count(double duration, double fps) {
+        const double intervals = duration * fps;
+        const double whole = std::floor(intervals + 1e-9);
+        return static_cast<std::uint64_t>(whole) + 1 + (intervals - whole > 1e-9 ? 1 : 0);
+    }
+    double frame_time(std::uint64_t k) const {
+        return std::min(double(k) / scene_.fps, scene_.duration);
+    }
+
     RunEnd simulate_frames() {
         for (std::uint64_t k = 0; k < frames_; ++k) {
-            // A frame is taken when simulation time crosses k / fps.
-            if (!simulate_until(double(k) / scene_.fps))
+            // A frame is taken when simulation time crosses its time.
+            if (!simulate_until(frame_time(k)))
                 return {RunStatus::interrupted,
                         StopSignals::received() != 0
                             ? fmt::format("stopped by signal {}", StopSignals::received())

@@ -12,7 +12,8 @@ const KeyTable<Scene>& top_level_keys() {
         {.path = "duration",
          .field = &Scene::duration,
          .unit = "s",
-         .doc = "Simulated time of the clip.",
+         .doc = "Simulated time of the clip: the run ends there, with a last frame at "
+                "that time when it is not a whole number of frames.",
          .bound = Bound::positive},
         {.path = "fps",
          .field = &Scene::fps,

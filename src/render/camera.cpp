@@ -250,8 +250,11 @@ CameraRig::CameraRig(const RenderSettings& settings, double aspect)
 CameraPose CameraRig::pose(const Snapshot& frame) {
     const RenderSettings& s = settings_;
     // Frames are k / fps apart: the camera moves smoothly even where the
-    // simulation's time steps do not land on a frame's time.
-    const double time = s.fps > 0 ? double(frame.frame) / s.fps : double(frame.time);
+    // simulation's time steps do not land on a frame's time. A last frame
+    // between two (at the duration, cli/clip_run.cpp) is at the duration.
+    double time = s.fps > 0 ? double(frame.frame) / s.fps : double(frame.time);
+    if (s.fps > 0 && s.duration > 0)
+        time = std::min(time, s.duration);
     if (!s.camera_path.empty())
         return path_pose(s.camera_path, time, s.dimension);
     if (s.camera_fixed)

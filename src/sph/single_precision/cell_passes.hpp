@@ -171,16 +171,22 @@ class CellPasses {
                         const float v_dot_x = glm::dot(v_ij, x_ij);
                         const float r = std::sqrt(r2);
                         const float g = kernel.dW_over_r(r);
-                        const bool wall = l.wall[m] > 0;
+                        // A wall's pressure term and density are stored as 0
+                        // and its `wall` as 1, so these sums pick exactly the
+                        // fluid's or the wall's value. Not a select: GCC made
+                        // the load under one a masked load, and then kept the
+                        // loop's two sums in memory, a store and a load in the
+                        // critical path of every vector of candidates.
+                        const float wall = l.wall[m];
                         float p_b = pt_i;
                         // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise,
                         // p_b = max(p_i + rho_i g . (x_b - x_i), 0).
                         if constexpr (hydrostatic)
                             p_b =
                                 std::max(pt_i - glm::dot(wall_gravity, x_ij) * inverse_rho_i, 0.f);
-                        float factor = pt_i + (wall ? p_b : l.pressure_term[m]);
+                        float factor = pt_i + (l.pressure_term[m] + wall * p_b);
                         if constexpr (artificial)
-                            factor += Pi(v_dot_x, rho_i + (wall ? rho_i : l.density[m]), r2);
+                            factor += Pi(v_dot_x, rho_i + (l.density[m] + wall * rho_i), r2);
                         const float pressure = -l.mass[m] * factor * g;
                         float viscous = 0;
                         if constexpr (laminar)

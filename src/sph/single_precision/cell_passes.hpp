@@ -298,11 +298,17 @@ class CellPasses {
             // and the next run or the padding overwrites what lies there):
             // a run is about 8 particles, and a loop of that length costs
             // more in its prologue and remainder than in its body.
+            // Indexed from a pointer to the run, in size_t: with the
+            // 32-bit index run.begin + c + l, which may wrap, GCC could not
+            // tell the loads were contiguous and made them one by one.
             for (const auto& run : cell.runs) {
-                for (std::uint32_t c = 0; c < run.end - run.begin; c += float_lanes)
-                    for (std::uint32_t l = 0; l < float_lanes; ++l)
-                        out[m + c + l] = float(x[run.begin + c + l] - r);
-                m += run.end - run.begin;
+                const Real* from = x + run.begin;
+                float* to = out + m;
+                const std::size_t length = run.end - run.begin;
+                for (std::size_t c = 0; c < length; c += float_lanes)
+                    for (std::size_t l = 0; l < float_lanes; ++l)
+                        to[c + l] = float(from[c + l] - r);
+                m += length;
             }
             fill_lanes(out + m, 1e18f);
             b.padded = (m + float_lanes - 1) / float_lanes * float_lanes;

@@ -240,10 +240,9 @@ void Simulation<D>::step_by(Real dt) {
     // The sources act first, outside the watchdog's retries, so a retried
     // step keeps what they added.
     emit_particles();
-    // Copy assignment reuses saved_'s memory: no allocation once sizes settle.
     {
         StageTimes::Scope timed(&stages_, Stage::watchdog);
-        saved_ = state_;
+        saved_.copy_from(state_);
     }
     const std::uint64_t steps_before = steps_;
     const StepCounters counters_before = counters_;

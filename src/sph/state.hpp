@@ -52,8 +52,33 @@ struct State {
         f(id);
     }
 
+    // This state's arrays beside `other`'s, in for_each_array's order.
+    template <class F>
+    void for_each_array_with(const State& other, F&& f) {
+        f(position, other.position);
+        f(velocity, other.velocity);
+        f(acceleration, other.acceleration);
+        f(density, other.density);
+        f(pressure, other.pressure);
+        f(id, other.id);
+    }
+
     void resize(std::size_t n) {
         for_each_array([n](auto& array) { array.resize(n); });
+    }
+
+    // *this = other, copied by every thread a slice at a time: the state
+    // saved before each step (Simulation::step_by), which one thread's copy
+    // made the others wait for. Allocates nothing once sizes settle.
+    void copy_from(const State& other) {
+        resize(other.size());
+        const std::size_t n = other.size();
+#pragma omp parallel
+        for_each_array_with(other, [n](auto& to, const auto& from) {
+#pragma omp for schedule(static) nowait
+            for (std::size_t i = 0; i < n; ++i)
+                to[i] = from[i];
+        });
     }
 
     // Every array reordered so that particle order[k] comes to k (order is a

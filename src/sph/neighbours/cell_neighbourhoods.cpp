@@ -11,8 +11,18 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
                                   Real radius, const Box<D>* walls_bounds) {
     fluid_count_ = fluid.size();
     resize_with_headroom(positions_, fluid.size() + walls.size());
-    std::copy(fluid.begin(), fluid.end(), positions_.begin());
-    std::copy(walls.begin(), walls.end(), positions_.begin() + std::ptrdiff_t(fluid.size()));
+    // By every thread: copied by one, the others waited (2% of a 2D step
+    // of 5,000 particles).
+    const std::size_t fluid_count = fluid.size(), wall_count = walls.size();
+#pragma omp parallel
+    {
+#pragma omp for schedule(static) nowait
+        for (std::size_t i = 0; i < fluid_count; ++i)
+            positions_[i] = fluid[i];
+#pragma omp for schedule(static) nowait
+        for (std::size_t i = 0; i < wall_count; ++i)
+            positions_[fluid_count + i] = walls[i];
+    }
     const auto order = walls_bounds ? grid_.cell_order(positions_, radius, *walls_bounds)
                                     : grid_.cell_order(positions_, radius);
 

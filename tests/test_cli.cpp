@@ -407,25 +407,7 @@ TEST_CASE("the keys command lists every scene key, and --version the version", "
     CHECK(nothing.exit_code == 2); // a subcommand is required
 }
 
-TEST_CASE("the duration and fps flags change the number of frames", "[cli]") {
-    TempFolder tmp;
-    const fs::path scene = write_scene(tmp, tiny_2d);
-    const fs::path out = tmp / "out";
-    auto frames_with = [&](const std::vector<std::string>& flags) {
-        const auto result = run_scene(tmp, scene, out, flags);
-        INFO(result.output);
-        REQUIRE(result.exit_code == 0);
-        return read_csv(out / "stats.csv").rows.size();
-    };
-    CHECK(frames_with({}) == 3);                    // 0.05 s at 40 fps
-    CHECK(frames_with({"--duration", "0.1"}) == 5); // 0.1 s at 40 fps
-    CHECK(frames_with({"--fps", "100"}) == 6);      // 0.05 s at 100 fps
-    CHECK(frames_with({"--duration", "0.1", "--fps", "20"}) == 3);
-    // The flags win over --set, whatever the order.
-    CHECK(frames_with({"--fps", "100", "--set", "fps=20"}) == 6);
-}
-
-TEST_CASE("a duration between two frames ends the run at the duration", "[cli]") {
+TEST_CASE("the duration and fps flags set the frames and their times", "[cli]") {
     TempFolder tmp;
     const fs::path scene = write_scene(tmp, tiny_2d);
     const fs::path out = tmp / "out";
@@ -439,7 +421,15 @@ TEST_CASE("a duration between two frames ends the run at the duration", "[cli]")
             times.push_back(stats.number(k, "time"));
         return times;
     };
-    // 0.06 s at 40 fps: the frames at 0, 0.025 and 0.05 s, then one at 0.06.
+    CHECK(times_with({}).size() == 3);                    // 0.05 s at 40 fps
+    CHECK(times_with({"--duration", "0.1"}).size() == 5); // 0.1 s at 40 fps
+    CHECK(times_with({"--fps", "100"}).size() == 6);      // 0.05 s at 100 fps
+    CHECK(times_with({"--duration", "0.1", "--fps", "20"}).size() == 3);
+    // The flags win over --set, whatever the order.
+    CHECK(times_with({"--fps", "100", "--set", "fps=20"}).size() == 6);
+
+    // A duration between two frames ends the run at the duration: 0.06 s at
+    // 40 fps is the frames at 0, 0.025 and 0.05 s, then one at 0.06.
     const auto between = times_with({"--duration", "0.06"});
     REQUIRE(between.size() == 4);
     CHECK(between[1] == Approx(0.025));

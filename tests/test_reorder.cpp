@@ -258,3 +258,25 @@ TEST_CASE("emitted particles join a reordered state with ids of their own", "[re
     for (const auto& x : s.position)
         CHECK((x.x >= box.min.x && x.x <= box.max.x && x.y >= box.min.y && x.y <= box.max.y));
 }
+
+TEST_CASE("State::copy_from copies every array, with every thread", "[reorder]") {
+    const State<2> source = scrambled_state(5000);
+    // Into an empty state, a larger one and a smaller one.
+    for (const std::size_t start : {std::size_t(0), std::size_t(7000), std::size_t(100)}) {
+        INFO(start);
+        State<2> copy;
+        copy.resize(start);
+        copy.for_each_array([](auto& array) {
+            using T = typename std::decay_t<decltype(array)>::value_type;
+            std::fill(array.begin(), array.end(), T(7));
+        });
+        copy.copy_from(source);
+        CHECK(copy.size() == source.size());
+        CHECK(copy.position == source.position);
+        CHECK(copy.velocity == source.velocity);
+        CHECK(copy.acceleration == source.acceleration);
+        CHECK(copy.density == source.density);
+        CHECK(copy.pressure == source.pressure);
+        CHECK(copy.id == source.id);
+    }
+}

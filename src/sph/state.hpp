@@ -1,8 +1,9 @@
 #pragma once
 // Particle state: one array per field (struct of arrays). Every array is listed
-// in for_each_array, so resizing, emitting and the spatial sort (permute)
-// touch all of them. Arrays that only one solver or effect needs live in that
-// solver or effect, not here.
+// in for_each_array_with (for_each_array walks the same list), so resizing,
+// emitting, the saved copy and the spatial sort (permute) touch all of them.
+// Arrays that only one solver or effect needs live in that solver or effect,
+// not here.
 
 #include "sph/vec.hpp"
 
@@ -44,15 +45,10 @@ struct State {
 
     template <class F>
     void for_each_array(F&& f) {
-        f(position);
-        f(velocity);
-        f(acceleration);
-        f(density);
-        f(pressure);
-        f(id);
+        for_each_array_with(*this, [&f](auto& array, const auto&) { f(array); });
     }
 
-    // This state's arrays beside `other`'s, in for_each_array's order.
+    // This state's arrays beside `other`'s: the one list of the arrays.
     template <class F>
     void for_each_array_with(const State& other, F&& f) {
         f(position, other.position);

@@ -3,6 +3,8 @@
 #include "sph/headroom.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace sph {
 
@@ -10,10 +12,39 @@ template <int D>
 void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls,
                                   Real radius, const Box<D>* walls_bounds) {
     fluid_count_ = fluid.size();
-    resize_with_headroom(positions_, fluid.size() + walls.size());
+    const std::size_t fluid_count = fluid.size();
+    // The walls within two cells of the fluid's box (a non-finite position
+    // takes no part in the box, as in the sorted grid): every wall in the
+    // 3^D cells around a fluid cell, so each cell's neighbourhood is the one
+    // all walls would give, the same bits, also over MPI ranks, which see
+    // the fluid's boxes of their own.
+    Real lo[D], hi[D];
+    for (int a = 0; a < D; ++a) {
+        lo[a] = std::numeric_limits<Real>::max();
+        hi[a] = std::numeric_limits<Real>::lowest();
+    }
+#pragma omp parallel for schedule(static) reduction(min : lo[:D]) reduction(max : hi[:D])
+    for (std::size_t i = 0; i < fluid_count; ++i)
+        for (int a = 0; a < D; ++a) {
+            const Real x = fluid[i][a];
+            if (std::abs(x) <= std::numeric_limits<Real>::max()) {
+                lo[a] = std::min(lo[a], x);
+                hi[a] = std::max(hi[a], x);
+            }
+        }
+    const Real margin = 2.001 * radius; // two cells of the grid's (radius + 2^-20)
+    wall_index_.clear();
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+        bool near = true;
+        for (int a = 0; a < D; ++a)
+            near = near && walls[i][a] >= lo[a] - margin && walls[i][a] <= hi[a] + margin;
+        if (near)
+            wall_index_.push_back(static_cast<std::uint32_t>(i));
+    }
+    const std::size_t wall_count = wall_index_.size();
+    resize_with_headroom(positions_, fluid_count + wall_count);
     // By every thread: copied by one, the others waited (2% of a 2D step
     // of 5,000 particles).
-    const std::size_t fluid_count = fluid.size(), wall_count = walls.size();
 #pragma omp parallel
     {
 #pragma omp for schedule(static) nowait
@@ -21,7 +52,7 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
             positions_[i] = fluid[i];
 #pragma omp for schedule(static) nowait
         for (std::size_t i = 0; i < wall_count; ++i)
-            positions_[fluid_count + i] = walls[i];
+            positions_[fluid_count + i] = walls[wall_index_[i]];
     }
     const auto order = walls_bounds ? grid_.cell_order(positions_, radius, *walls_bounds)
                                     : grid_.cell_order(positions_, radius);

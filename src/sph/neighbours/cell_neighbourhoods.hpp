@@ -6,8 +6,12 @@
 // Fluid and wall particles are sorted together into one sorted grid
 // (sph/neighbours/sorted_grid.hpp), so a cell's neighbourhood holds both:
 // sorted entry k is fluid particle order()[k] when that is below
-// fluid_count(), else wall particle order()[k] - fluid_count(). A cell lists
-// its particles by ascending index, so its fluid ones come first.
+// fluid_count(), else wall particle wall(order()[k] - fluid_count()). A cell
+// lists its particles by ascending index, so its fluid ones come first.
+// Only the walls within two cells of the fluid's box are sorted: the others
+// are in no fluid cell's neighbourhood, and in 3D a tank's walls can
+// outnumber its fluid (sorting them all every step was most of a small 3D
+// scene's neighbour cells).
 //
 // No distance is tested here and nothing is listed per particle: the pass
 // gathers a cell's neighbourhood into contiguous buffers once and runs every
@@ -35,6 +39,9 @@ class CellNeighbourhoods {
                const Box<D>* walls_bounds = nullptr);
 
     std::size_t fluid_count() const { return fluid_count_; }
+    // The wall particle (an index into build's `walls`) that sorted wall
+    // entry w = order()[k] - fluid_count() is.
+    std::uint32_t wall(std::size_t w) const { return wall_index_[w]; }
     // The particle (fluid, then wall) at each sorted position.
     std::span<const std::uint32_t> order() const { return grid_.order(); }
     // Positions in sorted order, one array per axis.
@@ -61,7 +68,8 @@ class CellNeighbourhoods {
 
   private:
     SortedGrid<D> grid_;
-    std::vector<Vec<D>> positions_; // fluid then walls
+    std::vector<Vec<D>> positions_;         // fluid then walls
+    std::vector<std::uint32_t> wall_index_; // the walls sorted, by index
     std::size_t fluid_count_ = 0;
     // Per grid cell.
     std::vector<typename SortedGrid<D>::NeighbourRuns> runs_;

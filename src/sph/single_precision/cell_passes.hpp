@@ -76,7 +76,8 @@ class CellPasses {
         for (std::size_t k = 0; k < total; ++k) {
             const std::uint32_t j = order[k];
             sorted_.mass[k] =
-                float(j < n ? params.mass : params.rest_density * boundary->volumes()[j - n]);
+                float(j < n ? params.mass
+                            : params.rest_density * boundary->volumes()[cells_.wall(j - n)]);
         }
         for_each_cell([&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
             gather(cell, sorted_.mass, b.mass, 0.f);
@@ -112,7 +113,7 @@ class CellPasses {
         for (std::size_t k = 0; k < total; ++k) {
             const std::uint32_t j = order[k];
             const bool fluid = j < n;
-            const Vec<D> v = fluid ? state.velocity[j] : boundary->velocities()[j - n];
+            const Vec<D> v = fluid ? state.velocity[j] : boundary->velocities()[cells_.wall(j - n)];
             for (int a = 0; a < D; ++a)
                 sorted_.velocity[a][k] = float(v[a]);
             if (fluid) {
@@ -123,7 +124,7 @@ class CellPasses {
                 sorted_.volume[k] = float(params.mass / rho);
                 sorted_.wall[k] = 0;
             } else {
-                const Real volume = boundary->volumes()[j - n];
+                const Real volume = boundary->volumes()[cells_.wall(j - n)];
                 sorted_.mass[k] = float(params.rest_density * volume);
                 sorted_.density[k] = 0; // the fluid particle's, in the loop
                 sorted_.pressure_term[k] = 0;

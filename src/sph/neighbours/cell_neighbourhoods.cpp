@@ -18,26 +18,14 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
     // 3^D cells around a fluid cell, so each cell's neighbourhood is the one
     // all walls would give, the same bits, also over MPI ranks, which see
     // the fluid's boxes of their own.
-    Real lo[D], hi[D];
-    for (int a = 0; a < D; ++a) {
-        lo[a] = std::numeric_limits<Real>::max();
-        hi[a] = std::numeric_limits<Real>::lowest();
-    }
-#pragma omp parallel for schedule(static) reduction(min : lo[:D]) reduction(max : hi[:D])
-    for (std::size_t i = 0; i < fluid_count; ++i)
-        for (int a = 0; a < D; ++a) {
-            const Real x = fluid[i][a];
-            if (std::abs(x) <= std::numeric_limits<Real>::max()) {
-                lo[a] = std::min(lo[a], x);
-                hi[a] = std::max(hi[a], x);
-            }
-        }
+    const Box<D> fluid_box = finite_bounds(fluid);
     const Real margin = 2.001 * radius; // two cells of the grid's (radius + 2^-20)
     wall_index_.clear();
     for (std::size_t i = 0; i < walls.size(); ++i) {
         bool near = true;
         for (int a = 0; a < D; ++a)
-            near = near && walls[i][a] >= lo[a] - margin && walls[i][a] <= hi[a] + margin;
+            near = near && walls[i][a] >= fluid_box.min[a] - margin &&
+                   walls[i][a] <= fluid_box.max[a] + margin;
         if (near)
             wall_index_.push_back(static_cast<std::uint32_t>(i));
     }

@@ -325,32 +325,35 @@ std::span<const std::uint64_t> SortedGrid<D>::cell_keys(std::span<const Vec<D>> 
 }
 
 template <int D>
+Box<D> finite_bounds(std::span<const Vec<D>> positions) {
+    Real lo[D], hi[D];
+    for (int a = 0; a < D; ++a) {
+        lo[a] = std::numeric_limits<Real>::max();
+        hi[a] = std::numeric_limits<Real>::lowest();
+    }
+    const std::size_t n = positions.size();
+#pragma omp parallel for schedule(static) reduction(min : lo[:D]) reduction(max : hi[:D])
+    for (std::size_t i = 0; i < n; ++i)
+        for (int a = 0; a < D; ++a) {
+            const Real x = positions[i][a];
+            if (std::abs(x) <= std::numeric_limits<Real>::max()) {
+                lo[a] = std::min(lo[a], x);
+                hi[a] = std::max(hi[a], x);
+            }
+        }
+    Box<D> box;
+    for (int a = 0; a < D; ++a) {
+        box.min[a] = lo[a];
+        box.max[a] = hi[a];
+    }
+    return box;
+}
+
+template <int D>
 void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radius) {
     const std::size_t n = positions.size();
 
-    // Bounding box of the finite positions (a NaN or an infinity is nobody's
-    // neighbour, and must not stretch the grid).
-    Vec<D> lo(std::numeric_limits<Real>::max()), hi(std::numeric_limits<Real>::lowest());
-#pragma omp parallel
-    {
-        Vec<D> thread_lo(std::numeric_limits<Real>::max());
-        Vec<D> thread_hi(std::numeric_limits<Real>::lowest());
-#pragma omp for schedule(static) nowait
-        for (std::size_t i = 0; i < n; ++i)
-            for (int a = 0; a < D; ++a) {
-                const Real v = positions[i][a];
-                if (std::abs(v) <= std::numeric_limits<Real>::max()) {
-                    thread_lo[a] = std::min(thread_lo[a], v);
-                    thread_hi[a] = std::max(thread_hi[a], v);
-                }
-            }
-#pragma omp critical
-        {
-            lo = glm::min(lo, thread_lo);
-            hi = glm::max(hi, thread_hi);
-        }
-    }
-
+    auto [lo, hi] = finite_bounds(positions);
     if (within_)
         for (int a = 0; a < D; ++a)
             if (within_->min[a] <= within_->max[a]) {
@@ -664,6 +667,8 @@ std::span<const std::uint32_t> SortedGrid<D>::cell_order(std::span<const Vec<D>>
     return order_;
 }
 
+template Box<2> finite_bounds<2>(std::span<const Vec<2>>);
+template Box<3> finite_bounds<3>(std::span<const Vec<3>>);
 template class SortedGrid<2>;
 template class SortedGrid<3>;
 

@@ -21,6 +21,12 @@
 
 namespace sph {
 
+// The box of the finite positions (a NaN or an infinity is nobody's
+// neighbour, and must not stretch a grid); min > max along every axis when
+// none is finite. By all threads.
+template <int D>
+Box<D> finite_bounds(std::span<const Vec<D>> positions);
+
 template <int D>
 class SortedGrid final : public NeighbourSearch<D> {
   public:

@@ -9,7 +9,7 @@
 // contiguous float buffers, and every particle of the cell runs one loop over
 // all of it, 16 lanes at a time with AVX-512 (8 with AVX2). About a third of
 // the candidates are within the support in 2D, a sixth in 3D; the others add
-// 0 (the 3D pressure pass skips blocks of them: sum_near_candidates). The same grid
+// 0 (the 3D passes skip blocks of them: sum_near_candidates). The same grid
 // cells replace the neighbour search.
 //
 // Accuracy: positions are copied as offsets from the cell's first particle,
@@ -51,8 +51,8 @@ inline constexpr std::uint32_t float_lanes = 8;
 inline constexpr std::uint32_t float_lanes = 4;
 #endif
 static_assert(float_lanes <= SortedGrid<2>::sorted_tail);
-// Candidates the 3D pressure pass skips at once when none is within the
-// support (CellPasses::sum_near_candidates): 8 was faster than 16 on the 3D
+// Candidates the 3D passes skip at once when none is within the support
+// (CellPasses::sum_near_candidates): 8 was faster than 16 on the 3D
 // dam break (a model of particles at random in their cells has 57% of the
 // blocks of 8 out of reach, 45% of those of 16). A divisor of the buffers'
 // padding, float_lanes.
@@ -92,7 +92,7 @@ class CellPasses {
             const Lanes l = b.lanes();
             for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
                 const FVec x_i = offset(k, reference);
-                const float sum = sum_candidates<float>(l.padded, [=](std::size_t m) {
+                const float sum = sum_near_candidates<float>(l, x_i, kernel.h, [=](std::size_t m) {
                     const FVec x_ij = x_i - l.position(m);
                     const float r2 = glm::dot(x_ij, x_ij);
                     return l.mass[m] * kernel.W(std::sqrt(r2));
@@ -355,15 +355,14 @@ class CellPasses {
             x[a] = float(cells_.sorted_positions(a)[k] - reference[a]);
         return x;
     }
-    // sum_candidates in the 3D pressure pass, for a particle at x_i and a
-    // kernel of support `support`: the blocks of skip_block candidates with
-    // none within the support are skipped. A sixth of 3D's candidates are
-    // within it (its ball in 27 cells), about half of the blocks of 8 have none,
-    // and the pressure term costs several times the test (on
-    // dam_break_water_3d, the pressure pass 200-215 -> 150-157 ns a
-    // particle-step). Not in 2D, where a third are within and a quarter of
-    // the blocks have none, nor in the density pass, whose term costs about
-    // what the test does: both measured slower (docs/benchmarks.md).
+    // sum_candidates in the 3D passes, for a particle at x_i and a kernel
+    // of support `support`: the blocks of skip_block candidates with none
+    // within the support are skipped. A sixth of 3D's candidates are within
+    // it (its ball in 27 cells) and about half of the blocks of 8 have none
+    // (on dam_break_water_3d the pressure pass 203-214 -> 138-140 ns a
+    // particle-step, the density pass 79-81 -> 68). In 2D a third are
+    // within and a quarter of the blocks have none: both passes measured
+    // no faster or slower there (docs/benchmarks.md).
     // Exact: a skipped term is 0 (the kernels are 0 from q = 1), and the
     // test keeps a margin so that round-off cannot skip a block with a term
     // in it. The sum runs a lane at a time in candidate order, then over the
@@ -386,16 +385,8 @@ class CellPasses {
             std::uint32_t* const near_blocks = l.near_blocks;
             std::size_t near_count = 0;
             for (std::size_t block = 0; block < l.padded; block += skip_block) {
-                // On plain floats: through glm's vectors GCC left this loop scalar.
-                const float *x = l.x + block, *y = l.y + block, *z = l.z + block;
-                int near = 0;
-#pragma omp simd reduction(+ : near)
-                for (std::size_t c = 0; c < skip_block; ++c) {
-                    const float dx = xi - x[c], dy = yi - y[c], dz = zi - z[c];
-                    near += dx * dx + dy * dy + dz * dz < reach2 ? 1 : 0;
-                }
                 near_blocks[near_count] = static_cast<std::uint32_t>(block);
-                near_count += near > 0 ? 1 : 0;
+                near_count += any_within(l, block, xi, yi, zi, reach2) ? 1 : 0;
             }
             for (std::size_t k = 0; k < near_count; ++k) {
                 const std::size_t block = near_blocks[k];
@@ -423,6 +414,32 @@ class CellPasses {
             }
             return total;
         }
+    }
+    // Whether a candidate of the block from `block` lies nearer than
+    // sqrt(reach2) to (xi, yi, zi) (3D).
+    static bool any_within(const Lanes& l, std::size_t block, float xi, float yi, float zi,
+                           float reach2) {
+#if defined(__AVX__)
+        // The lanes' signs in one move: the vectorised loop's sum over the
+        // lanes took 7 instructions more a block.
+        static_assert(skip_block == 8);
+        const __m256 dx = _mm256_sub_ps(_mm256_set1_ps(xi), _mm256_loadu_ps(l.x + block));
+        const __m256 dy = _mm256_sub_ps(_mm256_set1_ps(yi), _mm256_loadu_ps(l.y + block));
+        const __m256 dz = _mm256_sub_ps(_mm256_set1_ps(zi), _mm256_loadu_ps(l.z + block));
+        const __m256 r2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
+                                        _mm256_mul_ps(dz, dz));
+        return _mm256_movemask_ps(_mm256_cmp_ps(r2, _mm256_set1_ps(reach2), _CMP_LT_OQ)) != 0;
+#else
+        // On plain floats: through glm's vectors GCC left this loop scalar.
+        const float *x = l.x + block, *y = l.y + block, *z = l.z + block;
+        int near = 0;
+#pragma omp simd reduction(+ : near)
+        for (std::size_t c = 0; c < skip_block; ++c) {
+            const float dx = xi - x[c], dy = yi - y[c], dz = zi - z[c];
+            near += dx * dx + dy * dy + dz * dz < reach2 ? 1 : 0;
+        }
+        return near > 0;
+#endif
     }
     // sum over m < padded of term(m), a float or an array of D; an OpenMP
     // simd reduction, so the compiler vectorises it.

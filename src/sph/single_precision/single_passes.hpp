@@ -24,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <immintrin.h>
 #include <memory>
 #include <omp.h>
 #include <span>

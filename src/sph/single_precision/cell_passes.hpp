@@ -41,15 +41,22 @@
 
 namespace sph::SPHCLIP_SIMD_VARIANT {
 
-// Floats in one vector register of the variant: the cell loops' width. The
-// target region defines the instruction sets' macros for what it enables.
+// The variant's vector registers, in bits: named by a dispatched variant's
+// file (SPHCLIP_SIMD_BITS), since GCC 12's target pragma does not define the
+// instruction sets' macros for what it enables (the variants ran 4 floats
+// a register in their padding and copies until 2026-12-06); else from the
+// build's own flags.
+#ifndef SPHCLIP_SIMD_BITS
 #if defined(__AVX512F__)
-inline constexpr std::uint32_t float_lanes = 16;
+#define SPHCLIP_SIMD_BITS 512
 #elif defined(__AVX__)
-inline constexpr std::uint32_t float_lanes = 8;
+#define SPHCLIP_SIMD_BITS 256
 #else
-inline constexpr std::uint32_t float_lanes = 4;
+#define SPHCLIP_SIMD_BITS 128
 #endif
+#endif
+// Floats in one vector register of the variant: the cell loops' width.
+inline constexpr std::uint32_t float_lanes = SPHCLIP_SIMD_BITS / 32;
 static_assert(float_lanes <= SortedGrid<2>::sorted_tail);
 // Candidates the 3D passes skip at once when none is within the support
 // (CellPasses::sum_near_candidates): 8 was faster than 16 on the 3D
@@ -419,7 +426,7 @@ class CellPasses {
     // sqrt(reach2) to (xi, yi, zi) (3D).
     static bool any_within(const Lanes& l, std::size_t block, float xi, float yi, float zi,
                            float reach2) {
-#if defined(__AVX__)
+#if SPHCLIP_SIMD_BITS >= 256
         // The lanes' signs in one move: the vectorised loop's sum over the
         // lanes took 7 instructions more a block.
         static_assert(skip_block == 8);

@@ -9,5 +9,6 @@
 #pragma GCC target(                                                                                \
     "avx512f,avx512vl,avx512bw,avx512dq,avx512cd,avx2,fma,bmi,bmi2,lzcnt,movbe,f16c,prefer-vector-width=256")
 #define SPHCLIP_SIMD_VARIANT avx512
+#define SPHCLIP_SIMD_BITS 512
 #include "sph/single_precision/cell_passes.hpp"
 #pragma GCC pop_options

@@ -6,7 +6,7 @@
 # process; DualSPHysics's case made by GenCase beforehand, untimed), its
 # steps and its fluid particle-steps per second.
 #
-#   tests/bench/dualsphysics.sh SPHCLIP DUALSPHYSICS GENCASE CASE_XML [DP] [STOP_AT] [ROUNDS] [THREADS]
+#   tests/bench/dualsphysics.sh SPHCLIP DUALSPHYSICS GENCASE CASE_XML [DP] [STOP_AT] [ROUNDS] [THREADS] [SCENE] [SET]
 #
 # DUALSPHYSICS is a CPU build of DualSPHysics and GENCASE its case generator
 # of the same version, both built or taken in a scratch folder outside this
@@ -16,7 +16,11 @@
 # 20,000), TimeMax, TimeOut 0.1 s, its gauges left out (sphclip measures
 # none), and the keys DtFixed and DtFixedFile left out (DualSPHysics 5.0
 # reads DtFixed as a file's name). sphclip runs
-# tests/bench/peers/dualsphysics_dambreak_val2d.json at the same dp.
+# tests/bench/peers/dualsphysics_dambreak_val2d.json at the same dp, or
+# SCENE: tests/bench/peers/dualsphysics_dambreak_3d.json for DualSPHysics's
+# 3D dam break (examples/main/01_DamBreak/CaseDambreak_Def.xml, edited the
+# same way; dp 0.0093 m: about 99,000 fluid particles; issue 22, item 5),
+# with SET (e.g. solver.precision=single) passed to sphclip's --set.
 set -euo pipefail
 sphclip=${1:?usage: dualsphysics.sh SPHCLIP DUALSPHYSICS GENCASE CASE_XML [DP] [STOP_AT] [ROUNDS] [THREADS]}
 dualsphysics=${2:?DUALSPHYSICS}
@@ -27,11 +31,13 @@ stop_at=${6:-1.0}
 rounds=${7:-3}
 threads=${8:-2}
 here=$(cd "$(dirname "$0")" && pwd)
-ours="$here/peers/dualsphysics_dambreak_val2d.json"
+ours=${9:-"$here/peers/dualsphysics_dambreak_val2d.json"}
+set_option=()
+[ -n "${10:-}" ] && set_option=(--set "${10}")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-python3 - "$case_xml" "$work/Val2D_Def.xml" "$dp" "$stop_at" <<'PY'
+python3 - "$case_xml" "$work/Case_Def.xml" "$dp" "$stop_at" <<'PY'
 import sys
 import xml.etree.ElementTree as ET
 source, target, dp, stop_at = sys.argv[1:]
@@ -53,7 +59,7 @@ for p in list(parameters.findall("parameter")):
         p.set("value", "0.1")
 tree.write(target, encoding="UTF-8", xml_declaration=True)
 PY
-(cd "$work" && "$gencase" Val2D_Def case/Val2D -save:all > gencase.log 2>&1) ||
+(cd "$work" && "$gencase" Case_Def case/Case -save:all > gencase.log 2>&1) ||
     { cat "$work/gencase.log"; exit 1; }
 
 # A failed run stops the script with the end of its log, not a time.
@@ -64,12 +70,12 @@ ran() {
 }
 peer() {
     rm -rf "$work/peer"
-    OMP_NUM_THREADS=$threads ran "$work/peer.log" "$dualsphysics" "$work/case/Val2D" "$work/peer" \
+    OMP_NUM_THREADS=$threads ran "$work/peer.log" "$dualsphysics" "$work/case/Case" "$work/peer" \
         -cpu -ompthreads:"$threads" -svres:1
 }
 mine() {
-    ran "$work/ours.log" "$sphclip" run "$ours" --set fluid.spacing="$dp" --threads "$threads" \
-        --duration "$stop_at" --no-png --no-mp4 --out "$work/ours"
+    ran "$work/ours.log" "$sphclip" run "$ours" --set fluid.spacing="$dp" "${set_option[@]}" \
+        --threads "$threads" --duration "$stop_at" --no-png --no-mp4 --out "$work/ours"
 }
 seconds() {
     local t0 t1
@@ -79,7 +85,7 @@ seconds() {
     echo "$t1 - $t0" | bc
 }
 
-echo "# $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg); $threads threads; dp $dp m; to t = $stop_at s"
+echo "# $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg); $threads threads; $(basename "$case_xml") against $(basename "$ours")${10:+ --set ${10}}; dp $dp m; to t = $stop_at s"
 echo "round,DualSPHysics_s,sphclip_s,DualSPHysics_steps,sphclip_steps,DualSPHysics_fluid_particles,sphclip_fluid_particles,DualSPHysics_M_fluid_particle_steps_per_s,sphclip_M_fluid_particle_steps_per_s"
 for round in $(seq 1 "$rounds"); do
     p=$(seconds peer) || exit 1

@@ -816,8 +816,9 @@ Derived derive(const Scene& s) {
     // auto: single in 2D where it can run and the processor runs its
     // passes 8 floats wide or more (single_passes_pay). In 3D the 27 cells
     // around a cell hold six candidates per neighbour: single measured
-    // 1.1-1.2x double on an Intel Xeon, 0.75-0.85x on an AMD EPYC, for 27%
-    // more memory (docs/solvers.md, "Single precision").
+    // 1.0-1.35x double on an Intel Xeon (at rest and in the flow), 0.75-0.85x
+    // on an AMD EPYC, for 27% more memory (docs/solvers.md, "Single
+    // precision").
     d.precision =
         s.solver.precision ? *s.solver.precision
         : dim == 2 && single_precision_obstacle(s, d.kernel).empty() && single_passes_pay()

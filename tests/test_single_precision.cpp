@@ -194,6 +194,32 @@ TEST_CASE("the widest variant this processor runs is the default; SPHCLIP_SIMD p
         }
 }
 
+#if defined(__AVX512F__)
+constexpr std::size_t build_float_lanes = 16;
+#elif defined(__AVX__)
+constexpr std::size_t build_float_lanes = 8;
+#else
+constexpr std::size_t build_float_lanes = 4;
+#endif
+
+TEST_CASE("each dispatched variant runs as wide as its instruction set", "[single]") {
+    // GCC's target pragma defines no instruction-set macros: the avx2 and
+    // avx512 variants once took the baseline's 4 floats from them.
+    for (const std::string_view variant : simd_variants()) {
+        if (!simd_variant_runs(variant))
+            continue;
+        INFO("variant " << variant);
+        const PinnedVariant pinned(variant);
+        const std::size_t lanes = make_single_passes<3>()->float_lanes();
+        if (variant == "avx512")
+            CHECK(lanes == 16);
+        else if (variant == "avx2")
+            CHECK(lanes == 8);
+        else // the build's own flags, which this file has too
+            CHECK(lanes == build_float_lanes);
+    }
+}
+
 TEST_CASE("solver.precision: auto picks single where it can run, single says why not", "[single]") {
     // 2D: single where the processor runs the passes 8 floats wide or more.
     for (const std::string_view variant : simd_variants()) {

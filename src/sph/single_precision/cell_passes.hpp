@@ -509,6 +509,8 @@ class Passes final : public SinglePasses<D> {
         });
     }
 
+    std::size_t float_lanes() const override { return SPHCLIP_SIMD_VARIANT::float_lanes; }
+
   private:
     // The scene refuses single precision with the seed's spiky kernel.
     template <class F>

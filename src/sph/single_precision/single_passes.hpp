@@ -51,6 +51,9 @@ class SinglePasses {
     virtual void pressure_acceleration(const Params<D>& params, KernelKind kernel,
                                        const BoundaryParticles<D>* boundary,
                                        const PairViscosities& viscosities, State<D>& state) = 0;
+    // Floats in one of the variant's vector registers: its buffers' padding
+    // and its copies' width (a test checks each dispatched variant's).
+    virtual std::size_t float_lanes() const = 0;
 };
 
 // The variants this binary holds, widest first: "avx512" (x86-64-v4's

@@ -219,6 +219,34 @@ TEST_CASE("sorted grid neighbours of degenerate clouds", "[neighbours]") {
     CHECK(list2.pair_count() == 0);
 }
 
+TEST_CASE("finite_bounds: the box of the finite positions only", "[neighbours]") {
+    const Real inf = std::numeric_limits<Real>::infinity();
+    const Real nan = std::numeric_limits<Real>::quiet_NaN();
+    // Enough positions for both threads to see some.
+    std::vector<Vec<3>> positions = random_cloud<3>(1000, -2.0, 3.0, 5);
+    positions.push_back(Vec<3>(-1e300, 0, 0)); // finite: counts
+    positions.push_back(Vec<3>(nan, -100, 100));
+    positions.push_back(Vec<3>(-inf, inf, 0.5));
+    const Box<3> box = finite_bounds<3>(positions);
+    Vec<3> lo(inf), hi(-inf);
+    for (const auto& x : positions)
+        for (int a = 0; a < 3; ++a)
+            if (std::isfinite(x[a])) {
+                lo[a] = std::min(lo[a], x[a]);
+                hi[a] = std::max(hi[a], x[a]);
+            }
+    CHECK(box.min == lo);
+    CHECK(box.max == hi);
+    CHECK(box.min.x == -1e300);
+    CHECK(box.min.y == -100); // the NaN's neighbours on other axes count
+    // Nothing finite, or nothing at all: an empty box (min > max).
+    for (const auto& none : {std::vector<Vec<2>>{}, std::vector<Vec<2>>(3, Vec<2>(nan, inf))}) {
+        const Box<2> empty = finite_bounds<2>(none);
+        CHECK(empty.min.x > empty.max.x);
+        CHECK(empty.min.y > empty.max.y);
+    }
+}
+
 TEST_CASE("sorted grid neighbours stay exact over huge and sparse boxes", "[neighbours]") {
     // A stray particle far away: too many cells for a table, so the occupied
     // cells are hashed.

@@ -69,6 +69,33 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
         most = std::max<std::size_t>(most, candidates);
     }
     max_candidates_ = most;
+    if constexpr (D == 3)
+        colour_cells();
+}
+
+template <int D>
+void CellNeighbourhoods<D>::colour_cells() {
+    const std::size_t grid_cells = grid_.cell_count();
+    resize_with_headroom(entry_fluid_end_, sorted_count());
+    resize_with_headroom(colour_, grid_cells);
+#pragma omp parallel for schedule(static)
+    for (std::size_t c = 0; c < grid_cells; ++c) {
+        std::fill(entry_fluid_end_.begin() + grid_.cell_begin(c),
+                  entry_fluid_end_.begin() + grid_.cell_begin(c + 1), fluid_end_[c]);
+        colour_[c] = static_cast<std::uint8_t>(run_count_[c] > 0 ? grid_.colour(c) : 0);
+    }
+    // A counting sort of the cells with fluid by colour, stable.
+    colour_start_.fill(0);
+    for (std::size_t c = 0; c < grid_cells; ++c)
+        if (run_count_[c] > 0)
+            ++colour_start_[colour_[c] + 1];
+    for (int q = 0; q < colours; ++q)
+        colour_start_[q + 1] += colour_start_[q];
+    resize_with_headroom(coloured_, colour_start_[colours]);
+    auto next = colour_start_;
+    for (std::size_t c = 0; c < grid_cells; ++c)
+        if (run_count_[c] > 0)
+            coloured_[next[colour_[c]]++] = static_cast<std::uint32_t>(c);
 }
 
 template class CellNeighbourhoods<2>;

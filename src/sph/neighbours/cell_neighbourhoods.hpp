@@ -21,6 +21,7 @@
 
 #include "sph/neighbours/sorted_grid.hpp"
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -61,12 +62,26 @@ class CellNeighbourhoods {
         return {
             grid_.cell_begin(c), fluid_end_[c], {runs_[c].data(), run_count_[c]}, candidates_[c]};
     }
+    // Where the fluid of the cell that `run` (one of a Cell's runs) is ends:
+    // its wall particles are [fluid_end(run), run.end).
+    std::uint32_t fluid_end(const Range& run) const { return entry_fluid_end_[run.begin]; }
+    // The cells with fluid of colour q (SortedGrid::colour), along the
+    // Morton curve: no two share a particle of their neighbourhoods, so a
+    // pass may write into its neighbours' sums for all of them at once
+    // (built in 3D only: the 3D passes take each fluid pair once).
+    static constexpr int colours = D == 2 ? 9 : 27;
+    std::span<const std::uint32_t> coloured_cells(int q) const {
+        return {coloured_.data() + colour_start_[q], colour_start_[q + 1] - colour_start_[q]};
+    }
+
     // The most candidates of any cell with fluid: the size of a pass's buffers.
     std::size_t max_candidates() const { return max_candidates_; }
     // Sorted entries (fluid and walls).
     std::size_t sorted_count() const { return grid_.order().size(); }
 
   private:
+    void colour_cells();
+
     SortedGrid<D> grid_;
     std::vector<Vec<D>> positions_;         // fluid then walls
     std::vector<std::uint32_t> wall_index_; // the walls sorted, by index
@@ -75,6 +90,10 @@ class CellNeighbourhoods {
     std::vector<typename SortedGrid<D>::NeighbourRuns> runs_;
     std::vector<std::uint8_t> run_count_;
     std::vector<std::uint32_t> fluid_end_, candidates_;
+    std::vector<std::uint32_t> entry_fluid_end_; // per sorted entry: its cell's fluid_end_
+    std::vector<std::uint8_t> colour_;           // per grid cell
+    std::vector<std::uint32_t> coloured_;        // cells with fluid, by colour
+    std::array<std::uint32_t, colours + 1> colour_start_{};
     std::size_t max_candidates_ = 0;
 };
 

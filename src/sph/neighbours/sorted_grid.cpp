@@ -396,6 +396,18 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
 }
 
 template <int D>
+int SortedGrid<D>::colour(std::size_t cell) const {
+    Vec<D> x;
+    for (int a = 0; a < D; ++a)
+        x[a] = sorted_x_[a][cell_start_[cell]];
+    const Coord at = cell_of(x);
+    int colour = 0;
+    for (int a = D - 1; a >= 0; --a)
+        colour = 3 * colour + int(at[a] % 3);
+    return colour;
+}
+
+template <int D>
 int SortedGrid<D>::neighbour_runs(std::size_t cell, NeighbourRuns& runs) const {
     constexpr int neighbour_cells = D == 2 ? 9 : 27;
     const std::uint32_t first = cell_start_[cell];

@@ -9,7 +9,7 @@
 // contiguous float buffers, and every particle of the cell runs one loop over
 // all of it, 16 lanes at a time with AVX-512 (8 with AVX2). About a third of
 // the candidates are within the support in 2D, a sixth in 3D; the others add
-// 0 (the 3D passes skip blocks of them: sum_near_candidates). The same grid
+// 0 (the 3D passes skip blocks of them: sum_pairs_once). The same grid
 // cells replace the neighbour search.
 //
 // Accuracy: positions are copied as offsets from the cell's first particle,
@@ -59,7 +59,7 @@ namespace sph::SPHCLIP_SIMD_VARIANT {
 inline constexpr std::uint32_t float_lanes = SPHCLIP_SIMD_BITS / 32;
 static_assert(float_lanes <= SortedGrid<2>::sorted_tail);
 // Candidates the 3D passes skip at once when none is within the support
-// (CellPasses::sum_near_candidates): 8 was faster than 16 on the 3D
+// (CellPasses::sum_pairs_once): 8 was faster than 16 on the 3D
 // dam break (a model of particles at random in their cells has 57% of the
 // blocks of 8 out of reach, 45% of those of 16). A divisor of the buffers'
 // padding, float_lanes.
@@ -94,19 +94,27 @@ class CellPasses {
                 float(j < n ? params.mass
                             : params.rest_density * boundary->volumes()[cells_.wall(j - n)]);
         }
-        for_each_cell([&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
-            gather(cell, sorted_.mass, b.mass, 0.f);
+        // In 3D a fluid pair's term is the same for both particles (equal
+        // masses), so the candidate's reaction is +1 times it.
+        for_each_cell(1, [&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
+            gather(b, sorted_.mass, b.mass, 0.f);
             const Lanes l = b.lanes();
             for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
                 const FVec x_i = offset(k, reference);
-                const float sum = sum_near_candidates<float>(l, x_i, kernel.h, [=](std::size_t m) {
+                const auto term = [=](std::size_t m) {
                     const FVec x_ij = x_i - l.position(m);
                     const float r2 = glm::dot(x_ij, x_ij);
                     return l.mass[m] * kernel.W(std::sqrt(r2));
-                });
-                state.density[order[k]] = sum;
+                };
+                if constexpr (D == 2)
+                    state.density[order[k]] = sum_candidates<float>(l.padded, term);
+                else
+                    sums_[0][k] +=
+                        sum_pairs_once<float, 1>(l, x_i, kernel.h, term, b.reactions(), b.forward);
             }
         });
+        if constexpr (D == 3)
+            finish([&](std::uint32_t k, const FVec& sum) { state.density[order[k]] = sum[0]; });
     }
 
     // state.acceleration = the pressure acceleration with the viscosities
@@ -161,16 +169,16 @@ class CellPasses {
                 artificial ? viscosities.artificial->single() : MonaghanTerm<float>{};
             const MorrisViscosity::Single morris =
                 laminar ? viscosities.laminar->single() : MorrisViscosity::Single{};
-            for_each_cell([&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
+            for_each_cell(D, [&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
                 for (int a = 0; a < D; ++a)
-                    gather(cell, sorted_.velocity[a], b.velocity[a], 0.f);
-                gather(cell, sorted_.mass, b.mass, 0.f);
-                gather(cell, sorted_.pressure_term, b.pressure_term, 0.f);
-                gather(cell, sorted_.wall, b.wall, 0.f);
+                    gather(b, sorted_.velocity[a], b.velocity[a], 0.f);
+                gather(b, sorted_.mass, b.mass, 0.f);
+                gather(b, sorted_.pressure_term, b.pressure_term, 0.f);
+                gather(b, sorted_.wall, b.wall, 0.f);
                 if constexpr (artificial)
-                    gather(cell, sorted_.density, b.density, 1.f);
+                    gather(b, sorted_.density, b.density, 1.f);
                 if constexpr (laminar)
-                    gather(cell, sorted_.volume, b.volume, 0.f);
+                    gather(b, sorted_.volume, b.volume, 0.f);
                 const Lanes l = b.lanes();
                 for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
                     const FVec x_i = offset(k, reference);
@@ -180,39 +188,53 @@ class CellPasses {
                     const float pt_i = sorted_.pressure_term[k], rho_i = sorted_.density[k];
                     [[maybe_unused]] const float inverse_rho_i = 1.f / rho_i;
                     const float viscous_scale = laminar ? morris.two_mu / rho_i : 0.f;
-                    const FVec a_i =
-                        sum_near_candidates<FVec>(l, x_i, kernel.h, [=](std::size_t m) {
-                            const FVec x_ij = x_i - l.position(m);
-                            const FVec v_ij = v_i - l.velocity(m);
-                            const float r2 = glm::dot(x_ij, x_ij);
-                            const float v_dot_x = glm::dot(v_ij, x_ij);
-                            const float r = std::sqrt(r2);
-                            const float g = kernel.dW_over_r(r);
-                            // A wall's pressure term and density are stored as 0
-                            // and its `wall` as 1, so these sums pick exactly the
-                            // fluid's or the wall's value. Not a select: GCC made
-                            // the load under one a masked load, and then kept the
-                            // loop's two sums in memory, a store and a load in the
-                            // critical path of every vector of candidates.
-                            const float wall = l.wall[m];
-                            float p_b = pt_i;
-                            // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise,
-                            // p_b = max(p_i + rho_i g . (x_b - x_i), 0).
-                            if constexpr (hydrostatic)
-                                p_b = std::max(pt_i - glm::dot(wall_gravity, x_ij) * inverse_rho_i,
-                                               0.f);
-                            float factor = pt_i + (l.pressure_term[m] + wall * p_b);
-                            if constexpr (artificial)
-                                factor += Pi(v_dot_x, rho_i + (l.density[m] + wall * rho_i), r2);
-                            const float pressure = -l.mass[m] * factor * g;
-                            float viscous = 0;
-                            if constexpr (laminar)
-                                viscous = viscous_scale * morris(l.volume[m], r2 * g, r2);
-                            return pressure * x_ij + viscous * v_ij;
-                        });
-                    state.acceleration[order[k]] = Vec<D>(a_i);
+                    const auto term = [=](std::size_t m) {
+                        const FVec x_ij = x_i - l.position(m);
+                        const FVec v_ij = v_i - l.velocity(m);
+                        const float r2 = glm::dot(x_ij, x_ij);
+                        const float v_dot_x = glm::dot(v_ij, x_ij);
+                        const float r = std::sqrt(r2);
+                        const float g = kernel.dW_over_r(r);
+                        // A wall's pressure term and density are stored as 0
+                        // and its `wall` as 1, so these sums pick exactly the
+                        // fluid's or the wall's value. Not a select: GCC made
+                        // the load under one a masked load, and then kept the
+                        // loop's two sums in memory, a store and a load in the
+                        // critical path of every vector of candidates.
+                        const float wall = l.wall[m];
+                        float p_b = pt_i;
+                        // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise,
+                        // p_b = max(p_i + rho_i g . (x_b - x_i), 0).
+                        if constexpr (hydrostatic)
+                            p_b =
+                                std::max(pt_i - glm::dot(wall_gravity, x_ij) * inverse_rho_i, 0.f);
+                        float factor = pt_i + (l.pressure_term[m] + wall * p_b);
+                        if constexpr (artificial)
+                            factor += Pi(v_dot_x, rho_i + (l.density[m] + wall * rho_i), r2);
+                        const float pressure = -l.mass[m] * factor * g;
+                        float viscous = 0;
+                        if constexpr (laminar)
+                            viscous = viscous_scale * morris(l.volume[m], r2 * g, r2);
+                        return pressure * x_ij + viscous * v_ij;
+                    };
+                    // Between fluid particles the term is antisymmetric (the
+                    // same mass; p_i/rho_i^2 + p_j/rho_j^2, Pi_ij and the
+                    // laminar 2 mu m / (rho_i rho_j) symmetric in i and j), so
+                    // the candidate's reaction is -1 times it.
+                    if constexpr (D == 2)
+                        state.acceleration[order[k]] = Vec<D>(sum_candidates<FVec>(l.padded, term));
+                    else {
+                        const FVec a_i = sum_pairs_once<FVec, -1>(l, x_i, kernel.h, term,
+                                                                  b.reactions(), b.forward);
+                        for (int a = 0; a < D; ++a)
+                            sums_[a][k] += a_i[a];
+                    }
                 }
             });
+            if constexpr (D == 3)
+                finish([&](std::uint32_t k, const FVec& sum) {
+                    state.acceleration[order[k]] = Vec<D>(sum);
+                });
         };
         viscosities.dispatch([&](auto artificial, auto laminar) {
             if (hydrostatic_walls)
@@ -251,6 +273,13 @@ class CellPasses {
                 return {vx[m], vy[m], vz[m]};
         }
     };
+    // Where a cell's neighbourhood lies in a thread's buffers: pieces of the
+    // sorted arrays, each copied to `at`, in up to three segments each
+    // padded to whole blocks (pairs_once in 3D; one segment in 2D).
+    struct Piece {
+        std::uint32_t begin, end, at;
+    };
+    static constexpr int max_pieces = 2 * (D == 2 ? 9 : 27);
     // One thread's copy of a cell's neighbourhood, padded to whole vectors.
     // A cache line of its own: a thread writes `padded` for every cell, and
     // sharing its line with the next thread's vectors cost 2D a third of
@@ -259,6 +288,14 @@ class CellPasses {
         std::array<std::vector<float>, D> x, velocity;
         std::vector<float> mass, density, pressure_term, volume, wall;
         std::vector<std::uint32_t> near_blocks;
+        // 3D: the terms this cell's particles gave the candidates from
+        // `forward` on, by candidate (reaction[0] alone for the density).
+        std::array<std::vector<float>, D> reaction;
+        std::array<Piece, max_pieces> pieces;
+        int piece_count = 0;
+        std::array<std::uint32_t, 3> segment_end{}; // unpadded
+        int segments = 0;
+        std::uint32_t forward = 0; // where the candidates with a reaction start
         std::size_t padded = 0;
 
         Lanes lanes() {
@@ -269,34 +306,109 @@ class CellPasses {
                 volume.data(),      wall.data(),        padded,
                 near_blocks.data()};
         }
+        std::array<float*, D> reactions() {
+            std::array<float*, D> r;
+            for (int a = 0; a < D; ++a)
+                r[a] = reaction[a].data();
+            return r;
+        }
     };
 
     using Cell = typename CellNeighbourhoods<D>::Cell;
+    using Range = typename CellNeighbourhoods<D>::Range;
 
     // Calls work(cell, buffers, reference) for every cell holding fluid, in
     // parallel, with this thread's buffers holding the cell's candidates'
     // positions as offsets from `reference` (gather_positions).
+    // 3D: each fluid pair in two different cells is taken once (Newton's
+    // third law), by the cell first along the Morton curve: its particles
+    // run over the walls of the cells before it, its own particles and all
+    // of the cells after it, and write the terms they give those cells'
+    // particles to b.reaction (`parts` floats a candidate), which are added
+    // into sums_ when the cell is done. The cells go colour by colour, so no
+    // two threads add into one particle's sums at once, and each sum's
+    // order of additions is the same with any thread count. work adds each
+    // particle's own sum into sums_; finish then hands the sums over.
     template <class Work>
-    void for_each_cell(const Work& work) {
+    void for_each_cell(int parts, const Work& work) {
         prepare_buffers();
-        const std::size_t count = cells_.cell_count();
+        if constexpr (D == 2) {
+            const std::size_t count = cells_.cell_count();
 #pragma omp parallel for schedule(dynamic, 16)
-        for (std::size_t c = 0; c < count; ++c) {
-            const Cell cell = cells_.cell(c);
-            if (!cell.has_fluid())
+            for (std::size_t c = 0; c < count; ++c) {
+                const Cell cell = cells_.cell(c);
+                if (!cell.has_fluid())
+                    continue;
+                Buffers& b = buffers_[omp_get_thread_num()];
+                lay_out(cell, b);
+                work(cell, b, gather_positions(cell, b));
+            }
+        } else {
+            const std::size_t total = cells_.sorted_count();
+            for (int a = 0; a < D; ++a)
+                resize_with_headroom(sums_[a], total);
+#pragma omp parallel
+            {
+#pragma omp for schedule(static)
+                for (std::size_t k = 0; k < total; ++k)
+                    for (int a = 0; a < parts; ++a)
+                        sums_[a][k] = 0;
+                Buffers& b = buffers_[omp_get_thread_num()];
+                for (int q = 0; q < CellNeighbourhoods<D>::colours; ++q) {
+                    const auto cells = cells_.coloured_cells(q);
+#pragma omp for schedule(dynamic, 8)
+                    for (std::size_t i = 0; i < cells.size(); ++i) {
+                        const Cell cell = cells_.cell(cells[i]);
+                        lay_out(cell, b);
+                        for (int a = 0; a < parts; ++a)
+                            std::fill(b.reaction[a].data() + b.forward,
+                                      b.reaction[a].data() + b.padded, 0.f);
+                        work(cell, b, gather_positions(cell, b));
+                        for (int p = 0; p < b.piece_count; ++p) {
+                            const Piece piece = b.pieces[p];
+                            if (piece.at < b.forward)
+                                continue;
+                            // Walls' entries too: their sums are never read.
+                            for (int a = 0; a < parts; ++a) {
+                                float* const to = sums_[a].data() + piece.begin;
+                                const float* const from = b.reaction[a].data() + piece.at;
+#pragma omp simd
+                                for (std::uint32_t t = 0; t < piece.end - piece.begin; ++t)
+                                    to[t] += from[t];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // 3D, after for_each_cell: finish(k, sum) for every fluid particle's
+    // sorted entry k.
+    template <class Finish>
+    void finish(const Finish& finish_one) const {
+        const auto order = cells_.order();
+        const std::size_t total = cells_.sorted_count(), n = cells_.fluid_count();
+#pragma omp parallel for schedule(static)
+        for (std::size_t k = 0; k < total; ++k) {
+            if (order[k] >= n)
                 continue;
-            Buffers& b = buffers_[omp_get_thread_num()];
-            work(cell, b, gather_positions(cell, b));
+            FVec sum;
+            for (int a = 0; a < D; ++a)
+                sum[a] = sums_[a][k];
+            finish_one(static_cast<std::uint32_t>(k), sum);
         }
     }
 
     void prepare_buffers() {
         buffers_.resize(std::max<std::size_t>(buffers_.size(), omp_get_max_threads()));
-        const std::size_t size = cells_.max_candidates() + float_lanes;
+        // Each segment's padding, and a vector past the end.
+        const std::size_t size = cells_.max_candidates() + 3 * skip_block + 2 * float_lanes;
         for (Buffers& b : buffers_) {
             for (int a = 0; a < D; ++a) {
                 resize_with_headroom(b.x[a], size);
                 resize_with_headroom(b.velocity[a], size);
+                if constexpr (D == 3)
+                    resize_with_headroom(b.reaction[a], size);
             }
             for (auto* field : {&b.mass, &b.density, &b.pressure_term, &b.volume, &b.wall})
                 resize_with_headroom(*field, size);
@@ -304,8 +416,53 @@ class CellPasses {
         }
     }
 
-    // Copies the cell's candidates' positions into b, as offsets from its
-    // first particle (returned); the padding lanes lie far outside the support.
+    // Where each of the cell's candidates goes in b. 2D: all runs, in
+    // order, one segment. 3D: the walls of the runs before the cell's own,
+    // the cell itself, the runs after it (b.forward on), each segment
+    // starting on a whole block.
+    void lay_out(const Cell& cell, Buffers& b) const {
+        int p = 0;
+        std::uint32_t m = 0;
+        const auto add = [&](std::uint32_t begin, std::uint32_t end) {
+            if (end > begin) {
+                b.pieces[p++] = {begin, end, m};
+                m += end - begin;
+            }
+        };
+        if constexpr (D == 2) {
+            for (const Range& run : cell.runs)
+                add(run.begin, run.end);
+            b.segments = 1;
+            b.segment_end[0] = m;
+            b.forward = 0;
+            b.padded = (m + float_lanes - 1) / float_lanes * float_lanes;
+        } else {
+            const auto close_segment = [&](int s) {
+                b.segment_end[s] = m;
+                m = (m + skip_block - 1) / skip_block * skip_block;
+            };
+            const int runs = static_cast<int>(cell.runs.size());
+            int own = 0;
+            while (cell.runs[own].begin != cell.begin)
+                ++own;
+            for (int r = 0; r < own; ++r)
+                add(cells_.fluid_end(cell.runs[r]), cell.runs[r].end);
+            close_segment(0);
+            add(cell.runs[own].begin, cell.runs[own].end);
+            close_segment(1);
+            b.forward = m;
+            for (int r = own + 1; r < runs; ++r)
+                add(cell.runs[r].begin, cell.runs[r].end);
+            close_segment(2);
+            b.segments = 3;
+            b.padded = m;
+        }
+        b.piece_count = p;
+    }
+
+    // Copies the cell's candidates' positions into b as b's layout says, as
+    // offsets from its first particle (returned); the padding lanes lie far
+    // outside the support.
     Vec<D> gather_positions(const Cell& cell, Buffers& b) const {
         Vec<D> reference;
         for (int a = 0; a < D; ++a)
@@ -314,41 +471,49 @@ class CellPasses {
             const Real* x = cells_.sorted_positions(a).data();
             float* out = b.x[a].data();
             const Real r = reference[a];
-            std::size_t m = 0;
-            // Whole vectors at a time, past each run's end (sorted_tail,
-            // and the next run or the padding overwrites what lies there):
-            // a run is about 8 particles, and a loop of that length costs
-            // more in its prologue and remainder than in its body.
-            // Indexed from a pointer to the run, in size_t: with the
-            // 32-bit index run.begin + c + l, which may wrap, GCC could not
-            // tell the loads were contiguous and made them one by one.
-            for (const auto& run : cell.runs) {
-                const Real* from = x + run.begin;
-                float* to = out + m;
-                const std::size_t length = run.end - run.begin;
-                for (std::size_t c = 0; c < length; c += float_lanes)
-                    for (std::size_t l = 0; l < float_lanes; ++l)
-                        to[c + l] = float(from[c + l] - r);
-                m += length;
+            int p = 0;
+            for (int s = 0; s < b.segments; ++s) {
+                // Whole vectors at a time, past each piece's end
+                // (sorted_tail, and the next piece or the padding
+                // overwrites what lies there): a run is about 8 particles,
+                // and a loop of that length costs more in its prologue and
+                // remainder than in its body. Indexed from a pointer to the
+                // piece, in size_t: with the 32-bit index begin + c + l,
+                // which may wrap, GCC could not tell the loads were
+                // contiguous and made them one by one.
+                for (; p < b.piece_count && b.pieces[p].at < next_segment(b, s); ++p) {
+                    const Real* from = x + b.pieces[p].begin;
+                    float* to = out + b.pieces[p].at;
+                    const std::size_t length = b.pieces[p].end - b.pieces[p].begin;
+                    for (std::size_t c = 0; c < length; c += float_lanes)
+                        for (std::size_t l = 0; l < float_lanes; ++l)
+                            to[c + l] = float(from[c + l] - r);
+                }
+                fill_lanes(out + b.segment_end[s], 1e18f);
             }
-            fill_lanes(out + m, 1e18f);
-            b.padded = (m + float_lanes - 1) / float_lanes * float_lanes;
         }
         return reference;
     }
-    // Copies one field of the cell's candidates into `out`, then `padding`
-    // up to the padded end.
-    void gather(const Cell& cell, const std::vector<float>& field, std::vector<float>& out,
+    // Where segment s's padding ends: the next one's start.
+    static std::uint32_t next_segment(const Buffers& b, int s) {
+        return s + 1 < b.segments ? (b.segment_end[s] + skip_block - 1) / skip_block * skip_block
+                                  : ~std::uint32_t{0};
+    }
+    // Copies one field of the cell's candidates into `out` as b's layout
+    // says, with `padding` in each segment's padding.
+    void gather(const Buffers& b, const std::vector<float>& field, std::vector<float>& out,
                 float padding) const {
-        std::size_t m = 0;
-        for (const auto& run : cell.runs) {
-            // As in gather_positions: whole vectors, past the run's end.
-            for (std::uint32_t c = 0; c < run.end - run.begin; c += float_lanes)
-                std::memcpy(out.data() + m + c, field.data() + run.begin + c,
-                            float_lanes * sizeof(float));
-            m += run.end - run.begin;
+        int p = 0;
+        for (int s = 0; s < b.segments; ++s) {
+            for (; p < b.piece_count && b.pieces[p].at < next_segment(b, s); ++p) {
+                const Piece piece = b.pieces[p];
+                // As in gather_positions: whole vectors, past the piece's end.
+                for (std::uint32_t c = 0; c < piece.end - piece.begin; c += float_lanes)
+                    std::memcpy(out.data() + piece.at + c, field.data() + piece.begin + c,
+                                float_lanes * sizeof(float));
+            }
+            fill_lanes(out.data() + b.segment_end[s], padding);
         }
-        fill_lanes(out.data() + m, padding);
     }
     // Writes one vector of `value` from `at`: the padding, which that
     // reaches (the buffers have room past it).
@@ -362,11 +527,14 @@ class CellPasses {
             x[a] = float(cells_.sorted_positions(a)[k] - reference[a]);
         return x;
     }
-    // sum_candidates in the 3D passes, for a particle at x_i and a kernel
-    // of support `support`: the blocks of skip_block candidates with none
-    // within the support are skipped. A sixth of 3D's candidates are within
-    // it (its ball in 27 cells) and about half of the blocks of 8 have none
-    // (on dam_break_water_3d the pressure pass 203-214 -> 138-140 ns a
+    // The 3D passes' sum for a particle at x_i and a kernel of support
+    // `support`, over the candidates lay_out put in `lanes`; each term from
+    // l.forward on, times `reaction` (+1 or -1), is also added to that
+    // candidate's entry of `reaction_sums` (the term the pair gives it).
+    // The blocks of skip_block candidates with none within the support are
+    // skipped: a sixth of 3D's candidates are within it (its ball in 27
+    // cells) and about half of the blocks of 8 have none (on
+    // dam_break_water_3d the pressure pass 203-214 -> 138-140 ns a
     // particle-step, the density pass 79-81 -> 68). In 2D a third are
     // within and a quarter of the blocks have none: both passes measured
     // no faster or slower there (docs/benchmarks.md).
@@ -374,53 +542,77 @@ class CellPasses {
     // test keeps a margin so that round-off cannot skip a block with a term
     // in it. The sum runs a lane at a time in candidate order, then over the
     // lanes by halves: it does not depend on the thread count.
-    template <class T, class Term>
-    static T sum_near_candidates(const Lanes& lanes, const FVec& x_i, float support,
-                                 const Term& term_argument) {
-        if constexpr (D == 2)
-            return sum_candidates<T>(lanes.padded, term_argument);
-        else {
-            const Term term = term_argument;
-            const Lanes l = lanes; // local copies, as in sum_candidates
-            const float reach2 = support * support * 1.0001f;
-            const float xi = x_i.x, yi = x_i.y, zi = x_i.z;
-            constexpr int parts = std::is_same_v<T, float> ? 1 : D;
-            alignas(64) float sums[parts][skip_block] = {};
-            // First the blocks with a candidate within reach, listed without
-            // a branch: a branch a block, taken about half the time at
-            // random, cost more in mispredictions than the skipped terms.
-            std::uint32_t* const near_blocks = l.near_blocks;
-            std::size_t near_count = 0;
-            for (std::size_t block = 0; block < l.padded; block += skip_block) {
-                near_blocks[near_count] = static_cast<std::uint32_t>(block);
-                near_count += any_within(l, block, xi, yi, zi, reach2) ? 1 : 0;
-            }
-            for (std::size_t k = 0; k < near_count; ++k) {
-                const std::size_t block = near_blocks[k];
+    template <class T, int reaction, class Term>
+    static T sum_pairs_once(const Lanes& lanes, const FVec& x_i, float support,
+                            const Term& term_argument, const std::array<float*, D>& reaction_sums,
+                            std::size_t forward) {
+        static_assert(D == 3);
+        const Term term = term_argument;
+        const Lanes l = lanes; // local copies, as in sum_candidates
+        const float reach2 = support * support * 1.0001f;
+        const float xi = x_i.x, yi = x_i.y, zi = x_i.z;
+        constexpr int parts = std::is_same_v<T, float> ? 1 : D;
+        alignas(64) float sums[parts][skip_block] = {};
+        // First the blocks with a candidate within reach, listed without
+        // a branch: a branch a block, taken about half the time at
+        // random, cost more in mispredictions than the skipped terms.
+        std::uint32_t* const near_blocks = l.near_blocks;
+        std::size_t near_count = 0;
+        for (std::size_t block = 0; block < forward; block += skip_block) {
+            near_blocks[near_count] = static_cast<std::uint32_t>(block);
+            near_count += any_within(l, block, xi, yi, zi, reach2) ? 1 : 0;
+        }
+        const std::size_t before_forward = near_count;
+        for (std::size_t block = forward; block < l.padded; block += skip_block) {
+            near_blocks[near_count] = static_cast<std::uint32_t>(block);
+            near_count += any_within(l, block, xi, yi, zi, reach2) ? 1 : 0;
+        }
+        for (std::size_t k = 0; k < before_forward; ++k) {
+            const std::size_t block = near_blocks[k];
 #pragma omp simd
-                for (std::size_t c = 0; c < skip_block; ++c) {
-                    const T t = term(block + c);
-                    if constexpr (parts == 1)
-                        sums[0][c] += t;
-                    else {
-                        sums[0][c] += t.x;
-                        sums[1][c] += t.y;
-                        sums[2][c] += t.z;
-                    }
+            for (std::size_t c = 0; c < skip_block; ++c) {
+                const T t = term(block + c);
+                if constexpr (parts == 1)
+                    sums[0][c] += t;
+                else {
+                    sums[0][c] += t.x;
+                    sums[1][c] += t.y;
+                    sums[2][c] += t.z;
                 }
             }
-            T total{};
-            for (int a = 0; a < parts; ++a) {
-                for (std::size_t half = skip_block / 2; half > 0; half /= 2)
-                    for (std::size_t c = 0; c < half; ++c)
-                        sums[a][c] += sums[a][c + half];
-                if constexpr (parts == 1)
-                    total = sums[0][0];
-                else
-                    total[a] = sums[a][0];
-            }
-            return total;
         }
+        float* const r0 = reaction_sums[0];
+        float* const r1 = reaction_sums[parts == 1 ? 0 : 1];
+        float* const r2 = reaction_sums[parts == 1 ? 0 : 2];
+        for (std::size_t k = before_forward; k < near_count; ++k) {
+            const std::size_t block = near_blocks[k];
+#pragma omp simd
+            for (std::size_t c = 0; c < skip_block; ++c) {
+                const T t = term(block + c);
+                if constexpr (parts == 1) {
+                    sums[0][c] += t;
+                    r0[block + c] += reaction * t;
+                } else {
+                    sums[0][c] += t.x;
+                    sums[1][c] += t.y;
+                    sums[2][c] += t.z;
+                    r0[block + c] += reaction * t.x;
+                    r1[block + c] += reaction * t.y;
+                    r2[block + c] += reaction * t.z;
+                }
+            }
+        }
+        T total{};
+        for (int a = 0; a < parts; ++a) {
+            for (std::size_t half = skip_block / 2; half > 0; half /= 2)
+                for (std::size_t c = 0; c < half; ++c)
+                    sums[a][c] += sums[a][c + half];
+            if constexpr (parts == 1)
+                total = sums[0][0];
+            else
+                total[a] = sums[a][0];
+        }
+        return total;
     }
     // Whether a candidate of the block from `block` lies nearer than
     // sqrt(reach2) to (xi, yi, zi) (3D).
@@ -483,6 +675,8 @@ class CellPasses {
 
     CellNeighbourhoods<D> cells_;
     SortedFields sorted_;
+    // 3D: each fluid particle's sums by sorted entry (for_each_cell).
+    std::array<std::vector<float>, D> sums_;
     std::vector<Buffers> buffers_;
 };
 

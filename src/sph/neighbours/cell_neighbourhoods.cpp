@@ -77,25 +77,41 @@ template <int D>
 void CellNeighbourhoods<D>::colour_cells() {
     const std::size_t grid_cells = grid_.cell_count();
     resize_with_headroom(entry_fluid_end_, sorted_count());
-    resize_with_headroom(colour_, grid_cells);
 #pragma omp parallel for schedule(static)
-    for (std::size_t c = 0; c < grid_cells; ++c) {
+    for (std::size_t c = 0; c < grid_cells; ++c)
         std::fill(entry_fluid_end_.begin() + grid_.cell_begin(c),
                   entry_fluid_end_.begin() + grid_.cell_begin(c + 1), fluid_end_[c]);
-        colour_[c] = static_cast<std::uint8_t>(run_count_[c] > 0 ? grid_.colour(c) : 0);
+    // The cells with fluid by their tile's colour, in Morton order within
+    // each (a stable counting sort), and where each tile starts.
+    std::array<std::vector<std::uint32_t>, colours> cells, starts;
+    for (int q = 0; q < colours; ++q) {
+        cells[q].clear();
+        starts[q].clear();
     }
-    // A counting sort of the cells with fluid by colour, stable.
-    colour_start_.fill(0);
-    for (std::size_t c = 0; c < grid_cells; ++c)
-        if (run_count_[c] > 0)
-            ++colour_start_[colour_[c] + 1];
-    for (int q = 0; q < colours; ++q)
-        colour_start_[q + 1] += colour_start_[q];
-    resize_with_headroom(coloured_, colour_start_[colours]);
-    auto next = colour_start_;
-    for (std::size_t c = 0; c < grid_cells; ++c)
-        if (run_count_[c] > 0)
-            coloured_[next[colour_[c]]++] = static_cast<std::uint32_t>(c);
+    std::array<std::uint64_t, colours> last_tile;
+    last_tile.fill(~std::uint64_t{0});
+    for (std::size_t c = 0; c < grid_cells; ++c) {
+        if (run_count_[c] == 0)
+            continue;
+        int q = 0;
+        const std::uint64_t tile = grid_.tile(c, q);
+        if (tile != last_tile[q]) {
+            starts[q].push_back(static_cast<std::uint32_t>(cells[q].size()));
+            last_tile[q] = tile;
+        }
+        cells[q].push_back(static_cast<std::uint32_t>(c));
+    }
+    tiled_.clear();
+    tile_start_.clear();
+    for (int q = 0; q < colours; ++q) {
+        colour_start_[q] = static_cast<std::uint32_t>(tile_start_.size());
+        const auto base = static_cast<std::uint32_t>(tiled_.size());
+        for (const std::uint32_t s : starts[q])
+            tile_start_.push_back(base + s);
+        tiled_.insert(tiled_.end(), cells[q].begin(), cells[q].end());
+    }
+    colour_start_[colours] = static_cast<std::uint32_t>(tile_start_.size());
+    tile_start_.push_back(static_cast<std::uint32_t>(tiled_.size()));
 }
 
 template class CellNeighbourhoods<2>;

@@ -65,14 +65,18 @@ class CellNeighbourhoods {
     // Where the fluid of the cell that `run` (one of a Cell's runs) is ends:
     // its wall particles are [fluid_end(run), run.end).
     std::uint32_t fluid_end(const Range& run) const { return entry_fluid_end_[run.begin]; }
-    // The cells with fluid of colour q (SortedGrid::colour), along the
-    // Morton curve: no two share a particle of their neighbourhoods, so a
-    // pass may write into its neighbours' sums for all of them at once
-    // (built in 3D only: the 3D passes take each fluid pair once).
-    static constexpr int colours = D == 2 ? 9 : 27;
-    std::span<const std::uint32_t> coloured_cells(int q) const {
-        return {coloured_.data() + colour_start_[q], colour_start_[q + 1] - colour_start_[q]};
+    // The tiles of 2^D cells of colour q (SortedGrid::tile): no two share a
+    // particle of their cells' neighbourhoods, so a pass may write into
+    // its neighbours' sums for all of them at once, a tile a thread (built
+    // in 3D only: the 3D passes take each fluid pair once). Tile t of
+    // colour q holds the cells with fluid tiled_cells()[tile_start(q, t)
+    // .. tile_start(q, t + 1)), along the Morton curve.
+    static constexpr int colours = 1 << D;
+    std::size_t tile_count(int q) const { return colour_start_[q + 1] - colour_start_[q]; }
+    std::uint32_t tile_start(int q, std::size_t t) const {
+        return tile_start_[colour_start_[q] + t];
     }
+    std::span<const std::uint32_t> tiled_cells() const { return tiled_; }
 
     // The most candidates of any cell with fluid: the size of a pass's buffers.
     std::size_t max_candidates() const { return max_candidates_; }
@@ -91,9 +95,9 @@ class CellNeighbourhoods {
     std::vector<std::uint8_t> run_count_;
     std::vector<std::uint32_t> fluid_end_, candidates_;
     std::vector<std::uint32_t> entry_fluid_end_; // per sorted entry: its cell's fluid_end_
-    std::vector<std::uint8_t> colour_;           // per grid cell
-    std::vector<std::uint32_t> coloured_;        // cells with fluid, by colour
-    std::array<std::uint32_t, colours + 1> colour_start_{};
+    std::vector<std::uint32_t> tiled_;           // cells with fluid, by tile's colour, then tile
+    std::vector<std::uint32_t> tile_start_;      // into tiled_, by colour then tile, + end
+    std::array<std::uint32_t, colours + 1> colour_start_{}; // into tile_start_
     std::size_t max_candidates_ = 0;
 };
 

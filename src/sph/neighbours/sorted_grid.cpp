@@ -5,6 +5,7 @@
 #include "sph/wall_clock.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -396,15 +397,19 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
 }
 
 template <int D>
-int SortedGrid<D>::colour(std::size_t cell) const {
+std::uint64_t SortedGrid<D>::tile(std::size_t cell, int& colour) const {
+    static const int tile_shift = std::getenv("SPHCLIP_TILE") ? std::atoi(std::getenv("SPHCLIP_TILE")) : 1;
     Vec<D> x;
     for (int a = 0; a < D; ++a)
         x[a] = sorted_x_[a][cell_start_[cell]];
     const Coord at = cell_of(x);
-    int colour = 0;
-    for (int a = D - 1; a >= 0; --a)
-        colour = 3 * colour + int(at[a] % 3);
-    return colour;
+    std::uint64_t key = 0;
+    colour = 0;
+    for (int a = D - 1; a >= 0; --a) {
+        key = key << 21 | (at[a] >> tile_shift);
+        colour = 2 * colour + int(at[a] >> tile_shift & 1);
+    }
+    return key;
 }
 
 template <int D>

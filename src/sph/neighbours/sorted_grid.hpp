@@ -65,10 +65,13 @@ class SortedGrid final : public NeighbourSearch<D> {
     // order()[cell_begin(c) .. cell_begin(c + 1)), by ascending index.
     std::size_t cell_count() const { return cell_start_.size() - 1; }
     std::uint32_t cell_begin(std::size_t c) const { return cell_start_[c]; }
-    // The cell's colour, 0 .. 3^D - 1: its coordinates modulo 3. Two cells
-    // of one colour are at least three cells apart along some axis, so
-    // their 3^D neighbourhoods do not overlap.
-    int colour(std::size_t c) const;
+    // The tile of 2^D cells that cell c is in (its coordinates halved,
+    // packed), and the tile's colour, 0 .. 2^D - 1 (the halved coordinates'
+    // parities). Two tiles of one colour are at least two tiles apart along
+    // some axis, so two of their cells are three apart: their cells' 3^D
+    // neighbourhoods do not overlap. A tile's cells are consecutive along
+    // the Morton curve.
+    std::uint64_t tile(std::size_t c, int& colour) const;
     // A run of sorted particles: [begin, end).
     struct Range {
         std::uint32_t begin, end;

@@ -354,30 +354,32 @@ class CellPasses {
                     for (int a = 0; a < parts; ++a)
                         sums_[a][k] = 0;
                 Buffers& b = buffers_[omp_get_thread_num()];
+                const auto cells = cells_.tiled_cells();
                 for (int q = 0; q < CellNeighbourhoods<D>::colours; ++q) {
-                    const auto cells = cells_.coloured_cells(q);
-#pragma omp for schedule(dynamic, 8)
-                    for (std::size_t i = 0; i < cells.size(); ++i) {
-                        const Cell cell = cells_.cell(cells[i]);
-                        lay_out(cell, b);
-                        for (int a = 0; a < parts; ++a)
-                            std::fill(b.reaction[a].data() + b.forward,
-                                      b.reaction[a].data() + b.padded, 0.f);
-                        work(cell, b, gather_positions(cell, b));
-                        for (int p = 0; p < b.piece_count; ++p) {
-                            const Piece piece = b.pieces[p];
-                            if (piece.at < b.forward)
-                                continue;
-                            // Walls' entries too: their sums are never read.
-                            for (int a = 0; a < parts; ++a) {
-                                float* const to = sums_[a].data() + piece.begin;
-                                const float* const from = b.reaction[a].data() + piece.at;
+#pragma omp for schedule(dynamic, 1)
+                    for (std::size_t t = 0; t < cells_.tile_count(q); ++t)
+                        for (std::uint32_t i = cells_.tile_start(q, t);
+                             i < cells_.tile_start(q, t + 1); ++i) {
+                            const Cell cell = cells_.cell(cells[i]);
+                            lay_out(cell, b);
+                            for (int a = 0; a < parts; ++a)
+                                std::fill(b.reaction[a].data() + b.forward,
+                                          b.reaction[a].data() + b.padded, 0.f);
+                            work(cell, b, gather_positions(cell, b));
+                            for (int p = 0; p < b.piece_count; ++p) {
+                                const Piece piece = b.pieces[p];
+                                if (piece.at < b.forward)
+                                    continue;
+                                // Walls' entries too: their sums are never read.
+                                for (int a = 0; a < parts; ++a) {
+                                    float* const to = sums_[a].data() + piece.begin;
+                                    const float* const from = b.reaction[a].data() + piece.at;
 #pragma omp simd
-                                for (std::uint32_t t = 0; t < piece.end - piece.begin; ++t)
-                                    to[t] += from[t];
+                                    for (std::uint32_t t = 0; t < piece.end - piece.begin; ++t)
+                                        to[t] += from[t];
+                                }
                             }
                         }
-                    }
                 }
             }
         }

@@ -83,7 +83,8 @@ void CellNeighbourhoods<D>::colour_cells() {
                   entry_fluid_end_.begin() + grid_.cell_begin(c + 1), fluid_end_[c]);
     // The cells with fluid by their tile's colour, in Morton order within
     // each (a stable counting sort), and where each tile starts.
-    std::array<std::vector<std::uint32_t>, colours> cells, starts;
+    auto& cells = colour_cells_;
+    auto& starts = colour_tiles_;
     for (int q = 0; q < colours; ++q) {
         cells[q].clear();
         starts[q].clear();

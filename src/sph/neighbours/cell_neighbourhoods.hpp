@@ -98,6 +98,9 @@ class CellNeighbourhoods {
     std::vector<std::uint32_t> tiled_;           // cells with fluid, by tile's colour, then tile
     std::vector<std::uint32_t> tile_start_;      // into tiled_, by colour then tile, + end
     std::array<std::uint32_t, colours + 1> colour_start_{}; // into tile_start_
+    // colour_cells' scratch, kept between steps: by colour, the cells and
+    // where each tile starts among them.
+    std::array<std::vector<std::uint32_t>, colours> colour_cells_, colour_tiles_;
     std::size_t max_candidates_ = 0;
 };
 

@@ -5,7 +5,6 @@
 #include "sph/wall_clock.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -398,7 +397,6 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
 
 template <int D>
 std::uint64_t SortedGrid<D>::tile(std::size_t cell, int& colour) const {
-    static const int tile_shift = std::getenv("SPHCLIP_TILE") ? std::atoi(std::getenv("SPHCLIP_TILE")) : 1;
     Vec<D> x;
     for (int a = 0; a < D; ++a)
         x[a] = sorted_x_[a][cell_start_[cell]];

@@ -65,12 +65,17 @@ class SortedGrid final : public NeighbourSearch<D> {
     // order()[cell_begin(c) .. cell_begin(c + 1)), by ascending index.
     std::size_t cell_count() const { return cell_start_.size() - 1; }
     std::uint32_t cell_begin(std::size_t c) const { return cell_start_[c]; }
-    // The tile of 2^D cells that cell c is in (its coordinates halved,
-    // packed), and the tile's colour, 0 .. 2^D - 1 (the halved coordinates'
-    // parities). Two tiles of one colour are at least two tiles apart along
-    // some axis, so two of their cells are three apart: their cells' 3^D
-    // neighbourhoods do not overlap. A tile's cells are consecutive along
-    // the Morton curve.
+    // The tile of cells that cell c is in (its coordinates over
+    // 2^tile_shift, packed), and the tile's colour, 0 .. 2^D - 1 (those
+    // coordinates' parities). Two tiles of one colour are at least two
+    // tiles apart along some axis, so two of their cells are at least
+    // 2^tile_shift + 1 >= 3 apart: their cells' 3^D neighbourhoods do not
+    // overlap. A tile's cells are consecutive along the Morton curve.
+    // Tiles of 4^D cells: in 3D, 1.10x on a 100k-particle dam break against
+    // 2^D (too little of each tile's neighbourhood still cached) and 8^D
+    // (too few tiles a colour for two threads) (docs/benchmarks.md). Fixed,
+    // not sized to the scene, so that MPI ranks tile as one process does.
+    static constexpr int tile_shift = 2;
     std::uint64_t tile(std::size_t c, int& colour) const;
     // A run of sorted particles: [begin, end).
     struct Range {

@@ -12,11 +12,20 @@
 // 0 (the 3D passes skip blocks of them: sum_pairs_once). The same grid
 // cells replace the neighbour search.
 //
+// In 3D each pair of fluid particles in two different cells is computed
+// once, by the cell that comes first along the Morton curve, which adds the
+// pair's term to its particle and the term's reaction to the other's
+// (Newton's third law; for_each_cell): half the pair terms, with the cells
+// taken a tile of 4^3 at a time so that their neighbourhoods stay cached.
+// Taking each pair from both sides, as 2D does, measured at par there
+// (docs/benchmarks.md).
+//
 // Accuracy: positions are copied as offsets from the cell's first particle,
 // computed in double, so a domain far from the origin loses nothing; an
 // offset is at most two cells long and keeps 24 bits. The per-particle sums
 // are taken in float and stored in double. Each particle's sum runs over the
-// candidates in the cells' sorted order, so the result is the same with any
+// candidates in the cells' sorted order (in 3D: its own terms so, then the
+// reactions in the tiles' fixed order), so the result is the same with any
 // thread count. The float form of each formula is the double one's
 // (kernels, MonaghanViscosity, MorrisViscosity), with the same equations as
 // sph/density.hpp and sph/pressure_acceleration.hpp:

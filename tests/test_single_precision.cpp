@@ -76,12 +76,15 @@ class PinnedVariant {
 };
 
 template <int D>
-void check_against_double(const std::string& kernel_name, std::string_view variant) {
-    INFO(D << "D, " << kernel_name << ", variant " << variant);
+void check_against_double(const std::string& kernel_name, std::string_view variant,
+                          PairTerms pair_terms) {
+    INFO(D << "D, " << kernel_name << ", variant " << variant << ", pair terms "
+           << (pair_terms == PairTerms::once ? "once" : "both sides"));
     auto sim = make_simulation<D>(flowing_scene<D>(kernel_name, "double"));
     for (int k = 0; k < 150; ++k)
         sim.step();
-    const Params<D>& params = sim.params();
+    Params<D> params = sim.params();
+    params.pair_terms = pair_terms;
     const BoundaryParticles<D>* walls = sim.boundary();
     REQUIRE(walls != nullptr);
     // The paddle moves: its particles' velocities reach the viscous terms.
@@ -160,8 +163,11 @@ TEST_CASE("single-precision cell passes agree with the double passes", "[single]
             continue;
         ++tried;
         for (const char* kernel : {"cubic_spline", "wendland_c2"}) {
-            check_against_double<2>(kernel, variant);
-            check_against_double<3>(kernel, variant);
+            check_against_double<2>(kernel, variant, PairTerms::both_sides);
+            // 3D: from both sides, and each fluid pair once (the reactions;
+            // the walls of the cells before, with the paddle's among them).
+            check_against_double<3>(kernel, variant, PairTerms::both_sides);
+            check_against_double<3>(kernel, variant, PairTerms::once);
         }
     }
     CHECK(tried >= 1);
@@ -264,6 +270,44 @@ TEST_CASE("solver.precision: auto picks single where it can run, single says why
             FAIL("accepted single precision for " << bad.front().value);
         } catch (const InputError& e) {
             CHECK_THAT(e.what(), Catch::Contains("solver.precision"));
+        }
+    }
+}
+
+TEST_CASE("solver.pair_terms: auto takes 3D pairs once from 10,000 particles; once is 3D "
+          "single's",
+          "[single]") {
+    const auto pair_terms = [](const std::vector<Override>& o) {
+        return make_params<3>(default_scene(o), derive(default_scene(o))).pair_terms;
+    };
+    const std::vector<Override> single3{
+        {"solver.name", "wcsph"}, {"dimension", "3"}, {"solver.precision", "single"}};
+    // The default 3D block at its default spacing, and at a spacing that
+    // gives it more than 10,000 particles.
+    std::vector<Override> large = single3;
+    large.push_back({"fluid.spacing", "0.01"});
+    const Derived few = derive(default_scene(single3)), many = derive(default_scene(large));
+    REQUIRE(few.particles < 10000);
+    REQUIRE(many.particles >= 10000);
+    CHECK(pair_terms(single3) == PairTerms::both_sides);
+    CHECK(pair_terms(large) == PairTerms::once);
+    std::vector<Override> asked = single3;
+    asked.push_back({"solver.pair_terms", "once"});
+    CHECK(pair_terms(asked) == PairTerms::once);
+    large.push_back({"solver.pair_terms", "both_sides"});
+    CHECK(pair_terms(large) == PairTerms::both_sides);
+    // Refused where the passes take pairs from both sides only.
+    for (const std::vector<Override>& bad :
+         {std::vector<Override>{{"solver.name", "wcsph"}, {"solver.precision", "single"}},
+          {{"solver.name", "wcsph"}, {"dimension", "3"}},
+          {{"solver.name", "wcsph"}, {"dimension", "3"}, {"solver.precision", "double"}}}) {
+        std::vector<Override> o = bad;
+        o.push_back({"solver.pair_terms", "once"});
+        try {
+            default_scene(o);
+            FAIL("accepted solver.pair_terms once");
+        } catch (const InputError& e) {
+            CHECK_THAT(e.what(), Catch::Contains("solver.pair_terms"));
         }
     }
 }

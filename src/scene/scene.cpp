@@ -357,6 +357,11 @@ void check_solver(const FieldReader& r, const Scene& s) {
         if (!obstacle.empty())
             r.fail("solver.precision", "single: " + obstacle);
     }
+    if (s.solver.pair_terms == PairTerms::once &&
+        (s.dimension != 3 || s.solver.precision != Precision::single))
+        r.fail("solver.pair_terms",
+               "once is for 3D wcsph in single precision (solver.precision single); 2D and "
+               "the double passes take each pair from both sides");
     if (!solver.wall_particles && s.solver.walls == WallModel::particles)
         r.fail("solver.walls", "the seed solver's walls reflect; boundary particles are for "
                                "wcsph and dfsph");

@@ -40,6 +40,12 @@ enum class SolverKind { seed, wcsph, dfsph };
 // cells (sph/single_precision/cell_passes.hpp) or double over neighbour lists.
 enum class Precision { single, double_precision };
 
+// How wcsph's 3D single-precision passes take a pair of fluid particles in
+// two different cells (solver.pair_terms): from both sides, or once, by
+// the cell first along the Morton curve, the other particle's term its
+// reaction (sph/single_precision/cell_passes.hpp).
+enum class PairTerms { both_sides, once };
+
 // How the walls of the domain act on the fluid.
 enum class WallModel {
     reflect,  // the seed's: put back inside and reflect the velocity
@@ -101,6 +107,7 @@ struct Params {
     // which the ranges are cut again (src/parallel/rank_partition.cpp).
     Real rebalance_above = 1.1;
     Precision precision = Precision::double_precision;
+    PairTerms pair_terms = PairTerms::both_sides;
     // Gravity that the walls' pressure adds across the fluid-wall distance
     // (WallPressure::hydrostatic); zero: the mirrored pressure.
     Vec<D> wall_gravity{0}; // m/s^2

@@ -69,12 +69,14 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
         most = std::max<std::size_t>(most, candidates);
     }
     max_candidates_ = most;
-    if constexpr (D == 3)
-        colour_cells();
+    tiled_ready_ = false;
 }
 
 template <int D>
-void CellNeighbourhoods<D>::colour_cells() {
+void CellNeighbourhoods<D>::tile_cells() {
+    if (tiled_ready_)
+        return;
+    tiled_ready_ = true;
     const std::size_t grid_cells = grid_.cell_count();
     resize_with_headroom(entry_fluid_end_, sorted_count());
 #pragma omp parallel for schedule(static)

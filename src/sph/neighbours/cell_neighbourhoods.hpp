@@ -62,14 +62,17 @@ class CellNeighbourhoods {
         return {
             grid_.cell_begin(c), fluid_end_[c], {runs_[c].data(), run_count_[c]}, candidates_[c]};
     }
+    // For a pass that takes each fluid pair once (solver.pair_terms), after
+    // tile_cells (by one thread, once after each build; the rest of this
+    // block is valid after it):
+    void tile_cells();
     // Where the fluid of the cell that `run` (one of a Cell's runs) is ends:
     // its wall particles are [fluid_end(run), run.end).
     std::uint32_t fluid_end(const Range& run) const { return entry_fluid_end_[run.begin]; }
-    // The tiles of 2^D cells of colour q (SortedGrid::tile): no two share a
+    // The tiles of cells of colour q (SortedGrid::tile): no two share a
     // particle of their cells' neighbourhoods, so a pass may write into
-    // its neighbours' sums for all of them at once, a tile a thread (built
-    // in 3D only: the 3D passes take each fluid pair once). Tile t of
-    // colour q holds the cells with fluid tiled_cells()[tile_start(q, t)
+    // its neighbours' sums for all of them at once, a tile a thread. Tile t
+    // of colour q holds the cells with fluid tiled_cells()[tile_start(q, t)
     // .. tile_start(q, t + 1)), along the Morton curve.
     static constexpr int colours = 1 << D;
     std::size_t tile_count(int q) const { return colour_start_[q + 1] - colour_start_[q]; }
@@ -84,8 +87,6 @@ class CellNeighbourhoods {
     std::size_t sorted_count() const { return grid_.order().size(); }
 
   private:
-    void colour_cells();
-
     SortedGrid<D> grid_;
     std::vector<Vec<D>> positions_;         // fluid then walls
     std::vector<std::uint32_t> wall_index_; // the walls sorted, by index
@@ -95,10 +96,11 @@ class CellNeighbourhoods {
     std::vector<std::uint8_t> run_count_;
     std::vector<std::uint32_t> fluid_end_, candidates_;
     std::vector<std::uint32_t> entry_fluid_end_; // per sorted entry: its cell's fluid_end_
-    std::vector<std::uint32_t> tiled_;           // cells with fluid, by tile's colour, then tile
-    std::vector<std::uint32_t> tile_start_;      // into tiled_, by colour then tile, + end
+    bool tiled_ready_ = false;
+    std::vector<std::uint32_t> tiled_;      // cells with fluid, by tile's colour, then tile
+    std::vector<std::uint32_t> tile_start_; // into tiled_, by colour then tile, + end
     std::array<std::uint32_t, colours + 1> colour_start_{}; // into tile_start_
-    // colour_cells' scratch, kept between steps: by colour, the cells and
+    // tile_cells' scratch, kept between steps: by colour, the cells and
     // where each tile starts among them.
     std::array<std::vector<std::uint32_t>, colours> colour_cells_, colour_tiles_;
     std::size_t max_candidates_ = 0;

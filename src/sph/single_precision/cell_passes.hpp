@@ -105,8 +105,9 @@ class CellPasses {
         }
         // In 3D a fluid pair's term is the same for both particles (equal
         // masses), so the candidate's reaction is +1 times it.
-        for_each_cell(1, [&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
-            gather(b, sorted_.mass, b.mass, 0.f);
+        const bool once = D == 3 && params.pair_terms == PairTerms::once;
+        for_each_cell(once ? 1 : 0, [&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
+            gather(cell, b, sorted_.mass, b.mass, 0.f);
             const Lanes l = b.lanes();
             for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
                 const FVec x_i = offset(k, reference);
@@ -117,12 +118,15 @@ class CellPasses {
                 };
                 if constexpr (D == 2)
                     state.density[order[k]] = sum_candidates<float>(l.padded, term);
+                else if (!once)
+                    state.density[order[k]] =
+                        sum_pairs_once<float, 0>(l, x_i, kernel.h, term, {}, l.padded);
                 else
                     sums_[0][k] +=
                         sum_pairs_once<float, 1>(l, x_i, kernel.h, term, b.reactions(), b.forward);
             }
         });
-        if constexpr (D == 3)
+        if (once)
             finish([&](std::uint32_t k, const FVec& sum) { state.density[order[k]] = sum[0]; });
     }
 
@@ -164,6 +168,7 @@ class CellPasses {
                 sorted_.wall[k] = 1;
             }
         }
+        const bool once = D == 3 && params.pair_terms == PairTerms::once;
         const bool hydrostatic_walls = params.wall_gravity != Vec<D>(0);
         const FVec wall_gravity(params.wall_gravity);
         // Compiled for each set of viscosities (PairViscosities::dispatch) and
@@ -178,16 +183,16 @@ class CellPasses {
                 artificial ? viscosities.artificial->single() : MonaghanTerm<float>{};
             const MorrisViscosity::Single morris =
                 laminar ? viscosities.laminar->single() : MorrisViscosity::Single{};
-            for_each_cell(D, [&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
+            for_each_cell(once ? D : 0, [&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
                 for (int a = 0; a < D; ++a)
-                    gather(b, sorted_.velocity[a], b.velocity[a], 0.f);
-                gather(b, sorted_.mass, b.mass, 0.f);
-                gather(b, sorted_.pressure_term, b.pressure_term, 0.f);
-                gather(b, sorted_.wall, b.wall, 0.f);
+                    gather(cell, b, sorted_.velocity[a], b.velocity[a], 0.f);
+                gather(cell, b, sorted_.mass, b.mass, 0.f);
+                gather(cell, b, sorted_.pressure_term, b.pressure_term, 0.f);
+                gather(cell, b, sorted_.wall, b.wall, 0.f);
                 if constexpr (artificial)
-                    gather(b, sorted_.density, b.density, 1.f);
+                    gather(cell, b, sorted_.density, b.density, 1.f);
                 if constexpr (laminar)
-                    gather(b, sorted_.volume, b.volume, 0.f);
+                    gather(cell, b, sorted_.volume, b.volume, 0.f);
                 const Lanes l = b.lanes();
                 for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
                     const FVec x_i = offset(k, reference);
@@ -232,6 +237,9 @@ class CellPasses {
                     // the candidate's reaction is -1 times it.
                     if constexpr (D == 2)
                         state.acceleration[order[k]] = Vec<D>(sum_candidates<FVec>(l.padded, term));
+                    else if (!once)
+                        state.acceleration[order[k]] =
+                            Vec<D>(sum_pairs_once<FVec, 0>(l, x_i, kernel.h, term, {}, l.padded));
                     else {
                         const FVec a_i = sum_pairs_once<FVec, -1>(l, x_i, kernel.h, term,
                                                                   b.reactions(), b.forward);
@@ -240,7 +248,7 @@ class CellPasses {
                     }
                 }
             });
-            if constexpr (D == 3)
+            if (once)
                 finish([&](std::uint32_t k, const FVec& sum) {
                     state.acceleration[order[k]] = Vec<D>(sum);
                 });
@@ -282,13 +290,13 @@ class CellPasses {
                 return {vx[m], vy[m], vz[m]};
         }
     };
-    // Where a cell's neighbourhood lies in a thread's buffers: pieces of the
-    // sorted arrays, each copied to `at`, in up to three segments each
-    // padded to whole blocks (pairs_once in 3D; one segment in 2D).
+    // 3D: where a cell's neighbourhood lies in a thread's buffers (lay_out):
+    // pieces of the sorted arrays, each copied to `at`, one a run at most.
     struct Piece {
         std::uint32_t begin, end, at;
+        bool padded; // the last of its segment: padding follows it
     };
-    static constexpr int max_pieces = 2 * (D == 2 ? 9 : 27);
+    static constexpr int max_pieces = D == 2 ? 9 : 27;
     // One thread's copy of a cell's neighbourhood, padded to whole vectors.
     // A cache line of its own: a thread writes `padded` for every cell, and
     // sharing its line with the next thread's vectors cost 2D a third of
@@ -302,8 +310,6 @@ class CellPasses {
         std::array<std::vector<float>, D> reaction;
         std::array<Piece, max_pieces> pieces;
         int piece_count = 0;
-        std::array<std::uint32_t, 3> segment_end{}; // unpadded
-        int segments = 0;
         std::uint32_t forward = 0; // where the candidates with a reaction start
         std::size_t padded = 0;
 
@@ -341,7 +347,7 @@ class CellPasses {
     template <class Work>
     void for_each_cell(int parts, const Work& work) {
         prepare_buffers();
-        if constexpr (D == 2) {
+        if (D == 2 || parts == 0) {
             const std::size_t count = cells_.cell_count();
 #pragma omp parallel for schedule(dynamic, 16)
             for (std::size_t c = 0; c < count; ++c) {
@@ -349,10 +355,11 @@ class CellPasses {
                 if (!cell.has_fluid())
                     continue;
                 Buffers& b = buffers_[omp_get_thread_num()];
-                lay_out(cell, b);
+                b.piece_count = 0; // the runs in order (gather_positions)
                 work(cell, b, gather_positions(cell, b));
             }
-        } else {
+        } else if constexpr (D == 3) {
+            cells_.tile_cells();
             const std::size_t total = cells_.sorted_count();
             for (int a = 0; a < D; ++a)
                 resize_with_headroom(sums_[a], total);
@@ -427,53 +434,46 @@ class CellPasses {
         }
     }
 
-    // Where each of the cell's candidates goes in b. 2D: all runs, in
-    // order, one segment. 3D: the walls of the runs before the cell's own,
-    // the cell itself, the runs after it (b.forward on), each segment
-    // starting on a whole block.
+    // 3D: where each of the cell's candidates goes in b: the walls of the
+    // runs before the cell's own, the cell itself, the runs after it
+    // (b.forward on), each segment starting on a whole block, the last
+    // piece of each followed by padding.
     void lay_out(const Cell& cell, Buffers& b) const {
         int p = 0;
         std::uint32_t m = 0;
         const auto add = [&](std::uint32_t begin, std::uint32_t end) {
             if (end > begin) {
-                b.pieces[p++] = {begin, end, m};
+                b.pieces[p++] = {begin, end, m, false};
                 m += end - begin;
             }
         };
-        if constexpr (D == 2) {
-            for (const Range& run : cell.runs)
-                add(run.begin, run.end);
-            b.segments = 1;
-            b.segment_end[0] = m;
-            b.forward = 0;
-            b.padded = (m + float_lanes - 1) / float_lanes * float_lanes;
-        } else {
-            const auto close_segment = [&](int s) {
-                b.segment_end[s] = m;
-                m = (m + skip_block - 1) / skip_block * skip_block;
-            };
-            const int runs = static_cast<int>(cell.runs.size());
-            int own = 0;
-            while (cell.runs[own].begin != cell.begin)
-                ++own;
-            for (int r = 0; r < own; ++r)
-                add(cells_.fluid_end(cell.runs[r]), cell.runs[r].end);
-            close_segment(0);
-            add(cell.runs[own].begin, cell.runs[own].end);
-            close_segment(1);
-            b.forward = m;
-            for (int r = own + 1; r < runs; ++r)
-                add(cell.runs[r].begin, cell.runs[r].end);
-            close_segment(2);
-            b.segments = 3;
-            b.padded = m;
-        }
+        const auto close_segment = [&](int first) {
+            if (p > first)
+                b.pieces[p - 1].padded = true;
+            m = (m + skip_block - 1) / skip_block * skip_block;
+        };
+        const int runs = static_cast<int>(cell.runs.size());
+        int own = 0;
+        while (cell.runs[own].begin != cell.begin)
+            ++own;
+        for (int r = 0; r < own; ++r)
+            add(cells_.fluid_end(cell.runs[r]), cell.runs[r].end);
+        close_segment(0);
+        int first = p;
+        add(cell.runs[own].begin, cell.runs[own].end);
+        close_segment(first);
+        b.forward = m;
+        first = p;
+        for (int r = own + 1; r < runs; ++r)
+            add(cell.runs[r].begin, cell.runs[r].end);
+        close_segment(first);
+        b.padded = m;
         b.piece_count = p;
     }
 
-    // Copies the cell's candidates' positions into b as b's layout says, as
-    // offsets from its first particle (returned); the padding lanes lie far
-    // outside the support.
+    // Copies the cell's candidates' positions into b, as offsets from its
+    // first particle (returned); the padding lanes lie far outside the
+    // support: the runs in order, or, with pieces, as lay_out put them.
     Vec<D> gather_positions(const Cell& cell, Buffers& b) const {
         Vec<D> reference;
         for (int a = 0; a < D; ++a)
@@ -482,48 +482,64 @@ class CellPasses {
             const Real* x = cells_.sorted_positions(a).data();
             float* out = b.x[a].data();
             const Real r = reference[a];
-            int p = 0;
-            for (int s = 0; s < b.segments; ++s) {
-                // Whole vectors at a time, past each piece's end
-                // (sorted_tail, and the next piece or the padding
-                // overwrites what lies there): a run is about 8 particles,
-                // and a loop of that length costs more in its prologue and
-                // remainder than in its body. Indexed from a pointer to the
-                // piece, in size_t: with the 32-bit index begin + c + l,
-                // which may wrap, GCC could not tell the loads were
-                // contiguous and made them one by one.
-                for (; p < b.piece_count && b.pieces[p].at < next_segment(b, s); ++p) {
-                    const Real* from = x + b.pieces[p].begin;
-                    float* to = out + b.pieces[p].at;
-                    const std::size_t length = b.pieces[p].end - b.pieces[p].begin;
-                    for (std::size_t c = 0; c < length; c += float_lanes)
-                        for (std::size_t l = 0; l < float_lanes; ++l)
-                            to[c + l] = float(from[c + l] - r);
+            // Whole vectors at a time, past each run's end (sorted_tail,
+            // and the next run or the padding overwrites what lies there):
+            // a run is about 8 particles, and a loop of that length costs
+            // more in its prologue and remainder than in its body.
+            // Indexed from a pointer to the run, in size_t: with the
+            // 32-bit index run.begin + c + l, which may wrap, GCC could not
+            // tell the loads were contiguous and made them one by one.
+            const auto copy = [&](std::uint32_t begin, std::uint32_t end, std::size_t at) {
+                const Real* from = x + begin;
+                float* to = out + at;
+                const std::size_t length = end - begin;
+                for (std::size_t c = 0; c < length; c += float_lanes)
+                    for (std::size_t l = 0; l < float_lanes; ++l)
+                        to[c + l] = float(from[c + l] - r);
+            };
+            if (b.piece_count == 0) {
+                std::size_t m = 0;
+                for (const auto& run : cell.runs) {
+                    copy(run.begin, run.end, m);
+                    m += run.end - run.begin;
                 }
-                fill_lanes(out + b.segment_end[s], 1e18f);
+                fill_lanes(out + m, 1e18f);
+                b.padded = (m + float_lanes - 1) / float_lanes * float_lanes;
+            } else {
+                for (int p = 0; p < b.piece_count; ++p) {
+                    const Piece piece = b.pieces[p];
+                    copy(piece.begin, piece.end, piece.at);
+                    if (piece.padded)
+                        fill_lanes(out + piece.at + (piece.end - piece.begin), 1e18f);
+                }
             }
         }
         return reference;
     }
-    // Where segment s's padding ends: the next one's start.
-    static std::uint32_t next_segment(const Buffers& b, int s) {
-        return s + 1 < b.segments ? (b.segment_end[s] + skip_block - 1) / skip_block * skip_block
-                                  : ~std::uint32_t{0};
-    }
-    // Copies one field of the cell's candidates into `out` as b's layout
-    // says, with `padding` in each segment's padding.
-    void gather(const Buffers& b, const std::vector<float>& field, std::vector<float>& out,
-                float padding) const {
-        int p = 0;
-        for (int s = 0; s < b.segments; ++s) {
-            for (; p < b.piece_count && b.pieces[p].at < next_segment(b, s); ++p) {
-                const Piece piece = b.pieces[p];
-                // As in gather_positions: whole vectors, past the piece's end.
-                for (std::uint32_t c = 0; c < piece.end - piece.begin; c += float_lanes)
-                    std::memcpy(out.data() + piece.at + c, field.data() + piece.begin + c,
-                                float_lanes * sizeof(float));
+    // Copies one field of the cell's candidates into `out` as
+    // gather_positions does, then `padding` up to the padded ends.
+    void gather(const Cell& cell, const Buffers& b, const std::vector<float>& field,
+                std::vector<float>& out, float padding) const {
+        // As in gather_positions: whole vectors, past each run's end.
+        const auto copy = [&](std::uint32_t begin, std::uint32_t end, std::size_t at) {
+            for (std::uint32_t c = 0; c < end - begin; c += float_lanes)
+                std::memcpy(out.data() + at + c, field.data() + begin + c,
+                            float_lanes * sizeof(float));
+        };
+        if (b.piece_count == 0) {
+            std::size_t m = 0;
+            for (const auto& run : cell.runs) {
+                copy(run.begin, run.end, m);
+                m += run.end - run.begin;
             }
-            fill_lanes(out.data() + b.segment_end[s], padding);
+            fill_lanes(out.data() + m, padding);
+        } else {
+            for (int p = 0; p < b.piece_count; ++p) {
+                const Piece piece = b.pieces[p];
+                copy(piece.begin, piece.end, piece.at);
+                if (piece.padded)
+                    fill_lanes(out.data() + piece.at + (piece.end - piece.begin), padding);
+            }
         }
     }
     // Writes one vector of `value` from `at`: the padding, which that

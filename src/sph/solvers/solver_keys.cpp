@@ -138,6 +138,16 @@ const KeyTable<SolverSettings>& solver_keys() {
                 "(wcsph, a smooth kernel, the sorted grid, no XSPH or surface tension), else "
                 "double.",
          .choices = {"auto", "single", "double"}},
+        {.path = "pair_terms",
+         .field = auto_enum_field<&S::pair_terms>(),
+         .doc = "3D wcsph in single precision: each pair of fluid particles in two different "
+                "grid cells computed from both sides, or once (Newton's third law: the cell "
+                "first along the Morton curve adds the other particle's term to it), the "
+                "cells then taken in tiles of 4^3 cells, one colour of 8 at a time, so a small "
+                "scene has fewer tiles than threads; auto: once from 10,000 fluid particles at "
+                "the start (1.1-1.2x on 2 cores from 11,700 to 97,000). Changes round-off "
+                "only.",
+         .choices = {"auto", "both_sides", "once"}},
     };
     return keys;
 }

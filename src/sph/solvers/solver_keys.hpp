@@ -37,6 +37,8 @@ struct SolverSettings {
     // The arithmetic of wcsph's density and pressure passes
     // (sph/single_precision/cell_passes.hpp); none: auto.
     std::optional<Precision> precision;
+    // How the 3D single-precision passes take a fluid pair; none: auto.
+    std::optional<PairTerms> pair_terms;
     // mirror | hydrostatic | extrapolated (sph/params.hpp)
     WallPressure wall_pressure = WallPressure::mirror;
     // wcsph: delta of delta-SPH (Antuono et al. 2010); 0: the density summed.

@@ -282,16 +282,16 @@ TEST_CASE("solver.pair_terms: auto takes 3D pairs once from 10,000 particles; on
     };
     const std::vector<Override> single3{
         {"solver.name", "wcsph"}, {"dimension", "3"}, {"solver.precision", "single"}};
-    // The default 3D block at its default spacing, and at a spacing that
-    // gives it more than 10,000 particles.
-    std::vector<Override> large = single3;
-    large.push_back({"fluid.spacing", "0.01"});
-    const Derived few = derive(default_scene(single3)), many = derive(default_scene(large));
+    // The default 3D block at a spacing that gives it fewer than 10,000
+    // particles, and at its default spacing (more).
+    std::vector<Override> large = single3, small = single3;
+    small.push_back({"fluid.spacing", "0.05"});
+    const Derived few = derive(default_scene(small)), many = derive(default_scene(large));
     REQUIRE(few.particles < 10000);
     REQUIRE(many.particles >= 10000);
-    CHECK(pair_terms(single3) == PairTerms::both_sides);
+    CHECK(pair_terms(small) == PairTerms::both_sides);
     CHECK(pair_terms(large) == PairTerms::once);
-    std::vector<Override> asked = single3;
+    std::vector<Override> asked = small;
     asked.push_back({"solver.pair_terms", "once"});
     CHECK(pair_terms(asked) == PairTerms::once);
     large.push_back({"solver.pair_terms", "both_sides"});

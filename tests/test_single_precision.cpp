@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -291,6 +292,13 @@ TEST_CASE("solver.pair_terms: auto takes 3D pairs once from 10,000 particles; on
     REQUIRE(many.particles >= 10000);
     CHECK(pair_terms(small) == PairTerms::both_sides);
     CHECK(pair_terms(large) == PairTerms::once);
+    // run.json's scene records what auto resolved to.
+    CHECK(to_json(default_scene(large))["solver"]["pair_terms"] == "once");
+    CHECK(to_json(default_scene(small))["solver"]["pair_terms"] == "both_sides");
+    // In double precision the pairs are the neighbour lists': both sides.
+    std::vector<Override> large_double = large;
+    large_double.push_back({"solver.precision", "double"});
+    CHECK(pair_terms(large_double) == PairTerms::both_sides);
     std::vector<Override> asked = small;
     asked.push_back({"solver.pair_terms", "once"});
     CHECK(pair_terms(asked) == PairTerms::once);

@@ -901,6 +901,17 @@ Derived derive(const Scene& s) {
             count *= lattice_count(b.min[a], b.max[a], s.fluid.spacing);
         d.particles += count;
     }
+    // solver.pair_terms auto: once for 3D single precision from this many
+    // fluid particles at the start, a count every MPI rank and thread count
+    // sees alike, so the bits change with neither. Measured on 2 cores
+    // (docs/benchmarks.md, the pairs-once entry): 1.06-1.27x both sides at
+    // 11,700 to 97,000 particles, 0.65x at 858-1,365, where too few tiles of
+    // 4^3 cells fill each colour for two threads to share.
+    constexpr std::size_t pairs_once_from = 10000;
+    d.pair_terms = s.solver.pair_terms.value_or(dim == 3 && d.precision == Precision::single &&
+                                                        d.particles >= pairs_once_from
+                                                    ? PairTerms::once
+                                                    : PairTerms::both_sides);
     return d;
 }
 
@@ -928,6 +939,7 @@ json to_json(const Scene& s) {
     r.solver.kernel = d.kernel;
     r.solver.walls = d.walls;
     r.solver.precision = d.precision;
+    r.solver.pair_terms = d.pair_terms;
     r.output.name = s.output.name.value_or(s.name);
 
     json effects = json::object();

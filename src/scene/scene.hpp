@@ -186,6 +186,7 @@ struct Derived {
     KernelKind kernel = KernelKind::seed;              // solver.kernel resolved
     WallModel walls = WallModel::reflect;              // solver.walls resolved
     Precision precision = Precision::double_precision; // solver.precision resolved
+    PairTerms pair_terms = PairTerms::both_sides;      // solver.pair_terms resolved
     double sound_speed = 0;                            // m/s, sqrt(K / rho0)
     double max_speed = 0;                              // m/s, watchdog.max_speed resolved
     // Lattice sites of the blocks; the sites in or beside obstacles are left

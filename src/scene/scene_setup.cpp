@@ -53,14 +53,6 @@ std::vector<Paddle<D>> make_paddles(const Scene& scene) {
     return paddles;
 }
 
-// solver.pair_terms auto: once from this many fluid particles at the
-// start, the same on every MPI rank and with any thread count, so the bits
-// do not change with either. Measured on 2 cores (docs/benchmarks.md, "Each
-// fluid pair once"): 1.06-1.27x at 11,700 to 97,000 particles, 0.65x at
-// 858-1,365, where too few tiles of 4^3 cells fill each colour for two
-// threads to share.
-constexpr std::size_t pairs_once_from = 10000;
-
 template <int D>
 Params<D> make_params(const Scene& scene, const Derived& derived) {
     Params<D> p;
@@ -85,9 +77,7 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.reorder_every = scene.solver.reorder_every;
     p.rebalance_above = scene.solver.rebalance_above;
     p.precision = derived.precision;
-    // auto: once in 3D from pairs_once_from particles (Scene, "solver.pair_terms").
-    p.pair_terms = scene.solver.pair_terms.value_or(
-        D == 3 && derived.particles >= pairs_once_from ? PairTerms::once : PairTerms::both_sides);
+    p.pair_terms = derived.pair_terms;
     // Each solver reads only its own way of carrying the density (as the
     // others ignore solver.artificial_viscosity), so one tank scene serves
     // every solver: delta-SPH for wcsph, solver.density for dfsph.

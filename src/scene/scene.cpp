@@ -904,7 +904,7 @@ Derived derive(const Scene& s) {
     // solver.pair_terms auto: once for 3D single precision from this many
     // fluid particles at the start, a count every MPI rank and thread count
     // sees alike, so the bits change with neither. Measured on 2 cores
-    // (docs/benchmarks.md, the pairs-once entry): 1.06-1.27x both sides at
+    // (docs/benchmarks.md, the pairs-once entry): 1.07-1.27x both sides at
     // 11,700 to 97,000 particles, 0.65x at 858-1,365, where too few tiles of
     // 4^3 cells fill each colour for two threads to share.
     constexpr std::size_t pairs_once_from = 10000;

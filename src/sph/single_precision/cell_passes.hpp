@@ -608,24 +608,28 @@ class CellPasses {
                 }
             }
         }
-        float* const r0 = reaction_sums[0];
-        float* const r1 = reaction_sums[parts == 1 ? 0 : 1];
-        float* const r2 = reaction_sums[parts == 1 ? 0 : 2];
-        for (std::size_t k = before_forward; k < near_count; ++k) {
-            const std::size_t block = near_blocks[k];
+        // Reaction 0 (both sides) passes the padded end as `forward`: no
+        // block lies after it, and it has no reaction sums.
+        if constexpr (reaction != 0) {
+            float* const r0 = reaction_sums[0];
+            float* const r1 = reaction_sums[parts == 1 ? 0 : 1];
+            float* const r2 = reaction_sums[parts == 1 ? 0 : 2];
+            for (std::size_t k = before_forward; k < near_count; ++k) {
+                const std::size_t block = near_blocks[k];
 #pragma omp simd
-            for (std::size_t c = 0; c < skip_block; ++c) {
-                const T t = term(block + c);
-                if constexpr (parts == 1) {
-                    sums[0][c] += t;
-                    r0[block + c] += reaction * t;
-                } else {
-                    sums[0][c] += t.x;
-                    sums[1][c] += t.y;
-                    sums[2][c] += t.z;
-                    r0[block + c] += reaction * t.x;
-                    r1[block + c] += reaction * t.y;
-                    r2[block + c] += reaction * t.z;
+                for (std::size_t c = 0; c < skip_block; ++c) {
+                    const T t = term(block + c);
+                    if constexpr (parts == 1) {
+                        sums[0][c] += t;
+                        r0[block + c] += reaction * t;
+                    } else {
+                        sums[0][c] += t.x;
+                        sums[1][c] += t.y;
+                        sums[2][c] += t.z;
+                        r0[block + c] += reaction * t.x;
+                        r1[block + c] += reaction * t.y;
+                        r2[block + c] += reaction * t.z;
+                    }
                 }
             }
         }

@@ -228,7 +228,7 @@ TEST_CASE("each dispatched variant runs as wide as its instruction set", "[singl
 }
 
 TEST_CASE("solver.precision: auto picks single where it can run, single says why not", "[single]") {
-    // 2D: single where the processor runs the passes 8 floats wide or more.
+    // Single where the processor runs the passes 8 floats wide or more.
     for (const std::string_view variant : simd_variants()) {
         if (!simd_variant_runs(variant))
             continue;
@@ -241,10 +241,15 @@ TEST_CASE("solver.precision: auto picks single where it can run, single says why
             CHECK(single_passes_pay());
         CHECK(derive(default_scene({{"solver.name", "wcsph"}})).precision ==
               (single_passes_pay() ? Precision::single : Precision::double_precision));
+        // In 3D too, since its passes take each fluid pair once.
+        CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"dimension", "3"}})).precision ==
+              (single_passes_pay() ? Precision::single : Precision::double_precision));
     }
-    // 3D: single only when asked for (even speed, more memory).
-    CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"dimension", "3"}})).precision ==
-          Precision::double_precision);
+    // Where the single passes cannot run, auto is double in 3D too.
+    CHECK(derive(default_scene({{"solver.name", "wcsph"},
+                                {"dimension", "3"},
+                                {"solver.density_diffusion", "0.1"}}))
+              .precision == Precision::double_precision);
     CHECK(
         derive(default_scene(
                    {{"solver.name", "wcsph"}, {"dimension", "3"}, {"solver.precision", "single"}}))

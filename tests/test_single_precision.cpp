@@ -245,6 +245,18 @@ TEST_CASE("solver.precision: auto picks single where it can run, single says why
         CHECK(derive(default_scene({{"solver.name", "wcsph"}, {"dimension", "3"}})).precision ==
               (single_passes_pay() ? Precision::single : Precision::double_precision));
     }
+    // In 3D below 2,000 fluid particles at the start, double (measured
+    // faster there).
+    {
+        const std::vector<Override> few{
+            {"solver.name", "wcsph"}, {"dimension", "3"}, {"fluid.spacing", "0.05"}};
+        const Derived d = derive(default_scene(few));
+        REQUIRE(d.particles < 2000);
+        CHECK(d.precision == Precision::double_precision);
+        CHECK(to_json(default_scene(few))["solver"]["precision"] == "double");
+        REQUIRE(derive(default_scene({{"solver.name", "wcsph"}, {"dimension", "3"}})).particles >=
+                2000);
+    }
     // Where the single passes cannot run, auto is double in 3D too.
     CHECK(derive(default_scene({{"solver.name", "wcsph"},
                                 {"dimension", "3"},

@@ -818,16 +818,6 @@ Derived derive(const Scene& s) {
     const double ratio = s.fluid.smoothing_ratio.value_or(default_smoothing_ratio(dim));
     d.h = s.fluid.smoothing_length.value_or(ratio * s.fluid.spacing);
     d.kernel = derive_kernel(s);
-    // auto: single where it can run and the processor runs its passes 8
-    // floats wide or more (single_passes_pay). In 3D since its cells skip
-    // the blocks out of reach and take each fluid pair once: 1.4x double in
-    // the flow of a 3D dam break at 100k particles, 1.03-1.3x from 1,365 to
-    // 94k, with AVX-512 and with AVX2 on an Intel Xeon, for about 27% more
-    // memory (docs/solvers.md, "Single precision").
-    d.precision = s.solver.precision ? *s.solver.precision
-                  : single_precision_obstacle(s, d.kernel).empty() && single_passes_pay()
-                      ? Precision::single
-                      : Precision::double_precision;
     d.walls = s.solver.walls.value_or(solver_capabilities(s.solver.name).wall_particles
                                           ? WallModel::particles
                                           : WallModel::reflect);
@@ -900,6 +890,20 @@ Derived derive(const Scene& s) {
             count *= lattice_count(b.min[a], b.max[a], s.fluid.spacing);
         d.particles += count;
     }
+    // solver.precision auto: single where it can run and the processor runs
+    // its passes 8 floats wide or more (single_passes_pay); in 3D from this
+    // many fluid particles at the start (counted as pair_terms' below).
+    // Measured on an Intel Xeon, 2 threads (docs/benchmarks.md, "Single
+    // precision, the 3D default"): 1.4x double in the flow of a 3D dam break
+    // at 97k particles, with AVX-512 and with AVX2; from rest 1.13-1.26x at
+    // 3,600 to 11,700 particles, 1.0-1.2x at 33k and 94k, at par at 2,000 to
+    // 2,700 and 0.88-0.92x at 1,365. For about 27% more memory.
+    constexpr std::size_t single_3d_from = 2000;
+    d.precision = s.solver.precision ? *s.solver.precision
+                  : single_precision_obstacle(s, d.kernel).empty() && single_passes_pay() &&
+                          (dim == 2 || d.particles >= single_3d_from)
+                      ? Precision::single
+                      : Precision::double_precision;
     // solver.pair_terms auto: once for 3D single precision from this many
     // fluid particles at the start, a count every MPI rank and thread count
     // sees alike, so the bits change with neither. Measured on 2 cores

@@ -17,8 +17,8 @@ scene=$(cd "$(dirname "$scene")" && pwd)/$(basename "$scene")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-# spacing:duration, the duration shorter as the particles get more.
-sizes="0.0076:0.1 0.0055:0.06 0.0045:0.05 0.00381:0.05 0.0027:0.03 0.0019:0.015"
+# spacing:duration: a second or more of wall time for each run.
+sizes="0.0076:0.6 0.0055:0.3 0.0045:0.15 0.00381:0.1 0.0027:0.03 0.0019:0.015"
 echo "round,spacing,particles,precision,threads,particle_steps_per_s"
 for round in $(seq "$rounds"); do
     for size in $sizes; do

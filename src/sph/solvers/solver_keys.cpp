@@ -133,11 +133,12 @@ const KeyTable<SolverSettings>& solver_keys() {
         {.path = "precision",
          .field = auto_enum_field<&S::precision>(),
          .doc = "Arithmetic of wcsph's density and pressure passes: single (float, a grid cell "
-                "at a time, no neighbour lists; 1.3-1.8x faster in 2D, 1.03-1.4x in 3D for "
+                "at a time, no neighbour lists; 1.3-1.8x faster in 2D, 1.0-1.4x in 3D for "
                 "about 27% more memory) or double (neighbour lists); auto: single where it can "
                 "run (wcsph with a smooth kernel on the sorted grid, without density "
-                "diffusion, extrapolated wall pressure, XSPH or surface tension) on a processor "
-                "with 8-float vectors (AVX2 or wider), else double.",
+                "diffusion, extrapolated wall pressure, XSPH or surface tension; in 3D from "
+                "2,000 fluid particles at the start) on a processor with 8-float vectors (AVX2 "
+                "or wider), else double.",
          .choices = {"auto", "single", "double"}},
         {.path = "pair_terms",
          .field = auto_enum_field<&S::pair_terms>(),

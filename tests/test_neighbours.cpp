@@ -1,7 +1,9 @@
 // Equivalence of the neighbour searches with brute force (STYLE.md point 13),
 // on random clouds and lattices in 2D and 3D, negative coordinates included;
 // the sorted grid also with 1 and 2 threads.
+#include "sph/boundaries/boundary_particles.hpp"
 #include "sph/neighbours/all_pairs.hpp"
+#include "sph/neighbours/cell_neighbourhoods.hpp"
 #include "sph/neighbours/sorted_grid.hpp"
 #include "sph/neighbours/spatial_hash.hpp"
 
@@ -334,4 +336,122 @@ TEST_CASE("every neighbour search name makes that search", "[neighbours]") {
         CHECK(make_neighbour_search<3>(name)->name() == name);
     }
     CHECK_THROWS_AS(make_neighbour_search<3>("octree"), std::invalid_argument);
+}
+
+namespace {
+
+// The walls inside `box` by reading every one: what BoundaryParticles::within
+// must give.
+template <int D>
+std::vector<std::uint32_t> walls_inside(std::span<const Vec<D>> walls, const Box<D>& box) {
+    std::vector<std::uint32_t> out;
+    for (std::size_t b = 0; b < walls.size(); ++b) {
+        bool in = true;
+        for (int a = 0; a < D; ++a)
+            in = in && walls[b][a] >= box.min[a] && walls[b][a] <= box.max[a];
+        if (in)
+            out.push_back(static_cast<std::uint32_t>(b));
+    }
+    return out;
+}
+
+// A tank's walls with a few moving particles after them (a paddle's).
+template <int D>
+BoundaryParticles<D> tank_walls(const Box<D>& domain, Real spacing, Real h) {
+    BoundaryParticles<D> walls = BoundaryParticles<D>::box_walls(domain, spacing, h, 1.0);
+    std::vector<Vec<D>> moving = random_cloud<D>(50, 0.2, 0.6, 7);
+    walls.add_moving(moving, std::vector<Real>(moving.size(), 1.0),
+                     std::vector<std::uint32_t>(moving.size(), 0));
+    return walls;
+}
+
+template <int D>
+void check_within(const BoundaryParticles<D>& walls, const Box<D>& domain) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<Real> at(domain.min[0] - 0.2, domain.max[0] + 0.2);
+    std::vector<Box<D>> boxes;
+    for (int k = 0; k < 200; ++k) {
+        Box<D> box;
+        for (int a = 0; a < D; ++a) {
+            const Real u = at(rng), v = at(rng);
+            box.min[a] = std::min(u, v);
+            box.max[a] = std::max(u, v);
+        }
+        boxes.push_back(box);
+    }
+    Box<D> whole = domain, empty = domain, flat = domain, nan_box = domain;
+    for (int a = 0; a < D; ++a) {
+        whole.min[a] -= 1;
+        whole.max[a] += 1;
+        std::swap(empty.min[a], empty.max[a]);
+    }
+    // A box one wall site thick: its faces on the sites themselves.
+    flat.max[0] = flat.min[0] = walls.positions()[0][0];
+    nan_box.min[1] = std::numeric_limits<Real>::quiet_NaN();
+    for (const Box<D>& b : {whole, empty, flat, nan_box})
+        boxes.push_back(b);
+    for (const Box<D>& box : boxes) {
+        std::vector<std::uint32_t> got{12345}; // appended to, kept
+        walls.within(box, got);
+        REQUIRE(!got.empty());
+        CHECK(got.front() == 12345);
+        got.erase(got.begin());
+        CHECK(got == walls_inside<D>(walls.positions(), box));
+    }
+}
+
+} // namespace
+
+TEMPLATE_TEST_CASE_SIG("walls within a box come from the walls' grid as from reading them all",
+                       "[neighbours][walls]", ((int D), D), 2, 3) {
+    Box<D> domain;
+    domain.min = Vec<D>(0);
+    domain.max = Vec<D>(0.8);
+    domain.max[1] = 0.5;
+    const Real spacing = 0.02, h = 0.045;
+    const BoundaryParticles<D> walls = tank_walls<D>(domain, spacing, h);
+    REQUIRE(walls.has_moving());
+    check_within(walls, domain);
+    // Some of the walls on the whole set's grid (an MPI rank's share).
+    std::vector<Vec<D>> some;
+    for (std::size_t b = 0; b < walls.moving_begin(); b += 3)
+        if (walls.positions()[b][0] < 0.5)
+            some.push_back(walls.positions()[b]);
+    const BoundaryParticles<D> share(some, std::vector<Real>(some.size(), 1.0), h,
+                                     walls.static_bounds());
+    check_within(share, domain);
+}
+
+TEMPLATE_TEST_CASE_SIG("cell neighbourhoods: the walls' grid gives the same cells as reading "
+                       "every wall",
+                       "[neighbours][walls]", ((int D), D), 2, 3) {
+    Box<D> domain;
+    domain.min = Vec<D>(0);
+    domain.max = Vec<D>(0.8);
+    domain.max[1] = 0.5;
+    const Real spacing = 0.02, h = 0.045;
+    const BoundaryParticles<D> walls = tank_walls<D>(domain, spacing, h);
+    // Fluid in one corner: most walls are far from it.
+    const std::vector<Vec<D>> fluid = random_cloud<D>(D == 2 ? 800 : 3000, 0.01, 0.3, 5);
+    CellNeighbourhoods<D> read_all, through_grid;
+    read_all.build(fluid, walls.positions(), h, &walls.static_bounds());
+    through_grid.build(fluid, walls.positions(), h, &walls.static_bounds(),
+                       [&](const Box<D>& box, std::vector<std::uint32_t>& out) {
+                           walls.within(box, out);
+                       });
+    REQUIRE(read_all.sorted_count() == through_grid.sorted_count());
+    REQUIRE(read_all.sorted_count() > fluid.size());
+    REQUIRE(read_all.sorted_count() < fluid.size() + walls.size());
+    const auto a = read_all.order(), b = through_grid.order();
+    CHECK(std::equal(a.begin(), a.end(), b.begin(), b.end()));
+    for (std::size_t w = 0; w + fluid.size() < read_all.sorted_count(); ++w)
+        CHECK(read_all.wall(w) == through_grid.wall(w));
+    REQUIRE(read_all.cell_count() == through_grid.cell_count());
+    for (std::size_t c = 0; c < read_all.cell_count(); ++c) {
+        const auto x = read_all.cell(c), y = through_grid.cell(c);
+        CHECK(x.begin == y.begin);
+        CHECK(x.fluid_end == y.fluid_end);
+        CHECK(x.candidates == y.candidates);
+        CHECK(x.runs.size() == y.runs.size());
+    }
 }

@@ -125,6 +125,54 @@ Box<D> bounding_box(std::span<const Vec<D>> points) {
 } // namespace
 
 template <int D>
+void BoundaryParticles<D>::within(const Box<D>& box, std::vector<std::uint32_t>& out) const {
+    const auto inside = [&](const Vec<D>& x) {
+        bool in = true;
+        for (int a = 0; a < D; ++a)
+            in = in && x[a] >= box.min[a] && x[a] <= box.max[a];
+        return in;
+    };
+    // The static particles lie cell by cell in cell_index's order (x
+    // fastest), so rows of cells visited in that order give them in
+    // increasing order.
+    const Grid& grid = grid_;
+    Cell lo, hi;
+    bool any = moving_begin_ > 0;
+    for (int a = 0; a < D; ++a) {
+        // floor as in cell_of, clamped to the grid before the conversion
+        // (a NaN to -1: no cell).
+        const auto cell = [&](Real x) {
+            const Real k = std::floor((x - grid.origin[a]) / h_) - Real(grid.first[a]);
+            return k > Real(-1) ? (k < Real(grid.cells[a]) ? static_cast<std::int64_t>(k)
+                                                            : grid.cells[a])
+                                : std::int64_t{-1};
+        };
+        lo[a] = std::max<std::int64_t>(cell(box.min[a]), 0);
+        hi[a] = std::min<std::int64_t>(cell(box.max[a]), grid.cells[a] - 1);
+        any = any && lo[a] <= hi[a];
+    }
+    const auto add_row = [&](const Cell& first, const Cell& last) {
+        const std::uint32_t end = grid.cell_start[cell_index(grid, last) + 1];
+        for (std::uint32_t b = grid.cell_start[cell_index(grid, first)]; b < end; ++b)
+            if (inside(positions_[b]))
+                out.push_back(b);
+    };
+    if (any) {
+        if constexpr (D == 2) {
+            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                add_row(Cell(lo[0], j), Cell(hi[0], j));
+        } else {
+            for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+                for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                    add_row(Cell(lo[0], j, k), Cell(hi[0], j, k));
+        }
+    }
+    for (std::size_t b = moving_begin_; b < positions_.size(); ++b)
+        if (inside(positions_[b]))
+            out.push_back(static_cast<std::uint32_t>(b));
+}
+
+template <int D>
 std::size_t BoundaryParticles<D>::fit_grid(Grid& grid, std::span<const Vec<D>> points) const {
     const Box<D> box = bounding_box<D>(points);
     grid.origin = box.min;

@@ -88,6 +88,10 @@ class BoundaryParticles {
         return std::span<Vec<D>>(velocities_).subspan(moving_begin_);
     }
     void refresh_moving_grid();
+    // Appends to `out`, in increasing order, every particle inside `box`
+    // (its faces included): the static ones through their grid, reading
+    // only the cells the box overlaps, then the moving ones.
+    void within(const Box<D>& box, std::vector<std::uint32_t>& out) const;
     // Velocity of particle b (m/s): exactly 0 for a static one.
     // (Stored for the static ones too: a plain load keeps the loops that
     // read it vectorised.)

@@ -10,7 +10,8 @@ namespace sph {
 
 template <int D>
 void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls,
-                                  Real radius, const Box<D>* walls_bounds) {
+                                  Real radius, const Box<D>* walls_bounds,
+                                  const WallsWithin& walls_within) {
     fluid_count_ = fluid.size();
     const std::size_t fluid_count = fluid.size();
     // The walls within two cells of the fluid's box (a non-finite position
@@ -20,15 +21,25 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
     // the fluid's boxes of their own.
     const Box<D> fluid_box = finite_bounds(fluid);
     const Real margin = 2.001 * radius; // two cells of the grid's (radius + 2^-20)
-    wall_index_.clear();
-    for (std::size_t i = 0; i < walls.size(); ++i) {
-        bool near = true;
-        for (int a = 0; a < D; ++a)
-            near = near && walls[i][a] >= fluid_box.min[a] - margin &&
-                   walls[i][a] <= fluid_box.max[a] + margin;
-        if (near)
-            wall_index_.push_back(static_cast<std::uint32_t>(i));
+    Box<D> near_box = fluid_box;
+    for (int a = 0; a < D; ++a) {
+        near_box.min[a] -= margin;
+        near_box.max[a] += margin;
     }
+    wall_index_.clear();
+    // Through the walls' own grid when it is given: a tank's walls can
+    // outnumber its fluid three to one, and reading all of them every step
+    // cost 13 ns a particle-step of the 3D dam break at 97k particles.
+    if (walls_within)
+        walls_within(near_box, wall_index_);
+    else
+        for (std::size_t i = 0; i < walls.size(); ++i) {
+            bool near = true;
+            for (int a = 0; a < D; ++a)
+                near = near && walls[i][a] >= near_box.min[a] && walls[i][a] <= near_box.max[a];
+            if (near)
+                wall_index_.push_back(static_cast<std::uint32_t>(i));
+        }
     const std::size_t wall_count = wall_index_.size();
     resize_with_headroom(positions_, fluid_count + wall_count);
     // By every thread: copied by one, the others waited (2% of a 2D step

@@ -23,6 +23,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -33,11 +34,17 @@ class CellNeighbourhoods {
   public:
     using Range = typename SortedGrid<D>::Range;
 
+    // Appends to its vector, in increasing order, the walls inside a box
+    // (faces included), as BoundaryParticles::within does.
+    using WallsWithin = std::function<void(const Box<D>&, std::vector<std::uint32_t>&)>;
+
     // Sorts the fluid and wall particles into cells of size `radius` (> 0),
     // on a grid that covers `walls_bounds` too when given (the whole set's
     // box when `walls` are some of it: BoundaryParticles::static_bounds).
+    // `walls_within`, when given, lists the walls near the fluid without
+    // reading them all.
     void build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls, Real radius,
-               const Box<D>* walls_bounds = nullptr);
+               const Box<D>* walls_bounds = nullptr, const WallsWithin& walls_within = {});
 
     std::size_t fluid_count() const { return fluid_count_; }
     // The wall particle (an index into build's `walls`) that sorted wall

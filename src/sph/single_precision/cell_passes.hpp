@@ -83,7 +83,10 @@ class CellPasses {
     void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
                     Real radius) {
         if (boundary)
-            cells_.build(fluid, boundary->positions(), radius, &boundary->static_bounds());
+            cells_.build(fluid, boundary->positions(), radius, &boundary->static_bounds(),
+                         [boundary](const Box<D>& box, std::vector<std::uint32_t>& out) {
+                             boundary->within(box, out);
+                         });
         else
             cells_.build(fluid, {}, radius);
     }

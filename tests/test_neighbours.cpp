@@ -435,10 +435,9 @@ TEMPLATE_TEST_CASE_SIG("cell neighbourhoods: the walls' grid gives the same cell
     const std::vector<Vec<D>> fluid = random_cloud<D>(D == 2 ? 800 : 3000, 0.01, 0.3, 5);
     CellNeighbourhoods<D> read_all, through_grid;
     read_all.build(fluid, walls.positions(), h, &walls.static_bounds());
-    through_grid.build(fluid, walls.positions(), h, &walls.static_bounds(),
-                       [&](const Box<D>& box, std::vector<std::uint32_t>& out) {
-                           walls.within(box, out);
-                       });
+    through_grid.build(
+        fluid, walls.positions(), h, &walls.static_bounds(),
+        [&](const Box<D>& box, std::vector<std::uint32_t>& out) { walls.within(box, out); });
     REQUIRE(read_all.sorted_count() == through_grid.sorted_count());
     REQUIRE(read_all.sorted_count() > fluid.size());
     REQUIRE(read_all.sorted_count() < fluid.size() + walls.size());

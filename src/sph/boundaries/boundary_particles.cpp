@@ -143,9 +143,9 @@ void BoundaryParticles<D>::within(const Box<D>& box, std::vector<std::uint32_t>&
         // (a NaN to -1: no cell).
         const auto cell = [&](Real x) {
             const Real k = std::floor((x - grid.origin[a]) / h_) - Real(grid.first[a]);
-            return k > Real(-1) ? (k < Real(grid.cells[a]) ? static_cast<std::int64_t>(k)
-                                                            : grid.cells[a])
-                                : std::int64_t{-1};
+            return k > Real(-1)
+                       ? (k < Real(grid.cells[a]) ? static_cast<std::int64_t>(k) : grid.cells[a])
+                       : std::int64_t{-1};
         };
         lo[a] = std::max<std::int64_t>(cell(box.min[a]), 0);
         hi[a] = std::min<std::int64_t>(cell(box.max[a]), grid.cells[a] - 1);

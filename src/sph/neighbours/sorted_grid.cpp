@@ -181,32 +181,6 @@ void SortedGrid<D>::set_up_morton(const std::array<std::uint32_t, D>& bits) {
             }
 }
 
-template <int D>
-std::uint64_t SortedGrid<D>::spread(int axis, std::uint32_t c) const {
-    const auto& s = spread_[axis];
-    return s[0][c & 0xff] | s[1][c >> 8 & 0xff] | s[2][c >> 16 & 0xff];
-}
-
-template <int D>
-std::uint64_t SortedGrid<D>::morton(const Coord& c) const {
-    std::uint64_t code = 0;
-    for (int a = 0; a < D; ++a)
-        code |= spread(a, c[a]);
-    return code;
-}
-
-template <int D>
-typename SortedGrid<D>::Coord SortedGrid<D>::cell_of(const Vec<D>& x) const {
-    Coord c;
-    for (int a = 0; a < D; ++a) {
-        const Real u = (x[a] - origin_[a]) * inverse_cell_size_[a];
-        const Real top = Real(cell_count_[a] - 1);
-        // A NaN or infinity lands in a border cell; it is nobody's neighbour.
-        c[a] = u > 0 ? static_cast<std::uint32_t>(u < top ? u : top) : 0;
-    }
-    return c;
-}
-
 // Counting sort by Morton code (stable: a cell's particles by index), leaving
 // key_start_[k] = first sorted particle of code k for k in [0, key_count].
 template <int D>

@@ -355,6 +355,16 @@ std::vector<std::uint32_t> walls_inside(std::span<const Vec<D>> walls, const Box
     return out;
 }
 
+// The tank of the tests below: 0.8 wide (and deep), 0.5 high.
+template <int D>
+Box<D> tank() {
+    Box<D> domain;
+    domain.min = Vec<D>(0);
+    domain.max = Vec<D>(0.8);
+    domain.max[1] = 0.5;
+    return domain;
+}
+
 // A tank's walls with a few moving particles after them (a paddle's).
 template <int D>
 BoundaryParticles<D> tank_walls(const Box<D>& domain, Real spacing, Real h) {
@@ -404,12 +414,9 @@ void check_within(const BoundaryParticles<D>& walls, const Box<D>& domain) {
 
 TEMPLATE_TEST_CASE_SIG("walls within a box come from the walls' grid as from reading them all",
                        "[neighbours][walls]", ((int D), D), 2, 3) {
-    Box<D> domain;
-    domain.min = Vec<D>(0);
-    domain.max = Vec<D>(0.8);
-    domain.max[1] = 0.5;
-    const Real spacing = 0.02, h = 0.045;
-    const BoundaryParticles<D> walls = tank_walls<D>(domain, spacing, h);
+    const Box<D> domain = tank<D>();
+    const Real h = 0.045;
+    const BoundaryParticles<D> walls = tank_walls<D>(domain, 0.02, h);
     REQUIRE(walls.has_moving());
     check_within(walls, domain);
     // Some of the walls on the whole set's grid (an MPI rank's share).
@@ -425,12 +432,9 @@ TEMPLATE_TEST_CASE_SIG("walls within a box come from the walls' grid as from rea
 TEMPLATE_TEST_CASE_SIG("cell neighbourhoods: the walls' grid gives the same cells as reading "
                        "every wall",
                        "[neighbours][walls]", ((int D), D), 2, 3) {
-    Box<D> domain;
-    domain.min = Vec<D>(0);
-    domain.max = Vec<D>(0.8);
-    domain.max[1] = 0.5;
-    const Real spacing = 0.02, h = 0.045;
-    const BoundaryParticles<D> walls = tank_walls<D>(domain, spacing, h);
+    const Box<D> domain = tank<D>();
+    const Real h = 0.045;
+    const BoundaryParticles<D> walls = tank_walls<D>(domain, 0.02, h);
     // Fluid in one corner: most walls are far from it.
     const std::vector<Vec<D>> fluid = random_cloud<D>(D == 2 ? 800 : 3000, 0.01, 0.3, 5);
     CellNeighbourhoods<D> read_all, through_grid;

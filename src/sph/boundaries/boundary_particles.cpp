@@ -52,6 +52,13 @@ void BoundaryParticles<D>::for_each_row_in(const Grid& grid, const Vec<D>& x,
         if (lo[a] > hi[a])
             return; // far outside the grid's box
     }
+    for_each_row_between(grid, lo, hi, visit_row);
+}
+
+template <int D>
+template <class VisitRow>
+void BoundaryParticles<D>::for_each_row_between(const Grid& grid, const Cell& lo, const Cell& hi,
+                                                VisitRow&& visit_row) {
     // The cells along x are consecutive in the grid (cell_index), so the
     // lo..hi cells of a row are one range of entries, in the cells' order.
     auto visit_cells = [&](Cell first, Cell last) {
@@ -151,22 +158,12 @@ void BoundaryParticles<D>::within(const Box<D>& box, std::vector<std::uint32_t>&
         hi[a] = std::min<std::int64_t>(cell(box.max[a]), grid.cells[a] - 1);
         any = any && lo[a] <= hi[a];
     }
-    const auto add_row = [&](const Cell& first, const Cell& last) {
-        const std::uint32_t end = grid.cell_start[cell_index(grid, last) + 1];
-        for (std::uint32_t b = grid.cell_start[cell_index(grid, first)]; b < end; ++b)
-            if (inside(positions_[b]))
-                out.push_back(b);
-    };
-    if (any) {
-        if constexpr (D == 2) {
-            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
-                add_row(Cell(lo[0], j), Cell(hi[0], j));
-        } else {
-            for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
-                for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
-                    add_row(Cell(lo[0], j, k), Cell(hi[0], j, k));
-        }
-    }
+    if (any)
+        for_each_row_between(grid, lo, hi, [&](std::uint32_t begin, std::uint32_t end) {
+            for (std::uint32_t b = begin; b < end; ++b)
+                if (inside(positions_[b]))
+                    out.push_back(b);
+        });
     for (std::size_t b = moving_begin_; b < positions_.size(); ++b)
         if (inside(positions_[b]))
             out.push_back(static_cast<std::uint32_t>(b));

@@ -140,6 +140,11 @@ class BoundaryParticles {
     // around x's cell: the entries begin..end of `grid`.
     template <class VisitRow>
     void for_each_row_in(const Grid& grid, const Vec<D>& x, VisitRow&& visit_row) const;
+    // The same for the rows of the cells lo..hi (inside the grid), x along
+    // each row, in cell_index's order.
+    template <class VisitRow>
+    static void for_each_row_between(const Grid& grid, const Cell& lo, const Cell& hi,
+                                     VisitRow&& visit_row);
 
     std::vector<Vec<D>> positions_; // static ones sorted by cell, then moving ones
     std::vector<Real> volumes_;     // m^3 (m^2 in 2D)

@@ -128,6 +128,25 @@ void CellNeighbourhoods<D>::tile_cells() {
     tile_start_.push_back(static_cast<std::uint32_t>(tiled_.size()));
 }
 
+template <int D>
+typename CellNeighbourhoods<D>::Coordinates
+CellNeighbourhoods<D>::tile_halo(std::size_t c, std::span<HaloCell, halo_cells> halo) const {
+    Coordinates corner = grid_.coordinates(c);
+    for (int a = 0; a < D; ++a)
+        corner[a] = (corner[a] >> SortedGrid<D>::tile_shift << SortedGrid<D>::tile_shift) - 1;
+    for (int h = 0; h < halo_cells; ++h) {
+        Coordinates at;
+        int rest = h;
+        for (int a = 0; a < D; ++a) {
+            at[a] = corner[a] + rest % halo_width;
+            rest /= halo_width;
+        }
+        const Range r = grid_.range_at(at);
+        halo[h] = {r.begin, r.end > r.begin ? entry_fluid_end_[r.begin] : r.end, r.end};
+    }
+    return corner;
+}
+
 template class CellNeighbourhoods<2>;
 template class CellNeighbourhoods<3>;
 

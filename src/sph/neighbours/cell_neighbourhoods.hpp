@@ -88,6 +88,21 @@ class CellNeighbourhoods {
     }
     std::span<const std::uint32_t> tiled_cells() const { return tiled_; }
 
+    // For a pass that copies each tile's neighbourhood once (3D, after
+    // tile_cells): a tile's cells and the cells around it, halo_width^D of
+    // them, x fastest, each with its fluid [begin, fluid_end) and walls
+    // [fluid_end, end) in sorted order. tile_halo fills them for the tile
+    // of cell c and returns the grid coordinates of the first.
+    using Coordinates = typename SortedGrid<D>::Coordinates;
+    static constexpr int halo_width = (1 << SortedGrid<D>::tile_shift) + 2;
+    static constexpr int halo_cells =
+        D == 2 ? halo_width * halo_width : halo_width * halo_width * halo_width;
+    struct HaloCell {
+        std::uint32_t begin, fluid_end, end;
+    };
+    Coordinates tile_halo(std::size_t c, std::span<HaloCell, halo_cells> halo) const;
+    Coordinates coordinates(std::size_t c) const { return grid_.coordinates(c); }
+
     // The most candidates of any cell with fluid: the size of a pass's buffers.
     std::size_t max_candidates() const { return max_candidates_; }
     // Sorted entries (fluid and walls).

@@ -385,6 +385,29 @@ std::uint64_t SortedGrid<D>::tile(std::size_t cell, int& colour) const {
 }
 
 template <int D>
+typename SortedGrid<D>::Coordinates SortedGrid<D>::coordinates(std::size_t cell) const {
+    Vec<D> x;
+    for (int a = 0; a < D; ++a)
+        x[a] = sorted_x_[a][cell_start_[cell]];
+    const Coord at = cell_of(x);
+    Coordinates c;
+    for (int a = 0; a < D; ++a)
+        c[a] = at[a];
+    return c;
+}
+
+template <int D>
+typename SortedGrid<D>::Range SortedGrid<D>::range_at(const Coordinates& at) const {
+    std::uint64_t key = 0;
+    for (int a = 0; a < D; ++a) {
+        if (at[a] < 0 || at[a] >= std::int64_t(cell_count_[a]))
+            return {0, 0};
+        key |= spread(a, static_cast<std::uint32_t>(at[a]));
+    }
+    return cell_range(key);
+}
+
+template <int D>
 int SortedGrid<D>::neighbour_runs(std::size_t cell, NeighbourRuns& runs) const {
     constexpr int neighbour_cells = D == 2 ? 9 : 27;
     const std::uint32_t first = cell_start_[cell];

@@ -81,6 +81,13 @@ class SortedGrid final : public NeighbourSearch<D> {
     struct Range {
         std::uint32_t begin, end;
     };
+    // Integer coordinates of a cell on the grid (those of occupied cell c's
+    // first particle), and the particles of the cell at some coordinates:
+    // empty outside the grid or where no particle is (a pass that lays out
+    // a tile's neighbourhood itself, sph/single_precision/cell_passes.hpp).
+    using Coordinates = std::array<std::int64_t, D>;
+    Coordinates coordinates(std::size_t c) const;
+    Range range_at(const Coordinates& at) const;
     // The runs of the (up to 3^D) occupied cells around cell c, c included,
     // by ascending position; returns how many.
     using NeighbourRuns = std::array<Range, D == 2 ? 9 : 27>;

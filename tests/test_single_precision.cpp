@@ -114,7 +114,7 @@ void check_against_double(const std::string& kernel_name, std::string_view varia
             const PinnedVariant pinned(variant);
             const auto passes = make_single_passes<D>();
             SinglePasses<D>& cells = *passes;
-            cells.find_cells(in_single.position, walls, params.h);
+            cells.find_cells(in_single.position, walls, params.h, params.pair_terms);
             cells.density(params, params.kernel, walls, in_single);
             Real worst_density = 0;
             for (std::size_t i = 0; i < in_double.size(); ++i)

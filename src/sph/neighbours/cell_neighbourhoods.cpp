@@ -11,7 +11,7 @@ namespace sph {
 template <int D>
 void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls,
                                   Real radius, const Box<D>* walls_bounds,
-                                  const WallsWithin& walls_within) {
+                                  const WallsWithin& walls_within, bool cell_runs) {
     fluid_count_ = fluid.size();
     const std::size_t fluid_count = fluid.size();
     // The walls within two cells of the fluid's box (a non-finite position
@@ -71,7 +71,13 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
         while (k < end && order[k] < n)
             ++k;
         fluid_end_[c] = k;
-        const int count = k > begin ? grid_.neighbour_runs(c, runs_[c]) : 0;
+        int count = 0;
+        if (k > begin && cell_runs)
+            count = grid_.neighbour_runs(c, runs_[c]);
+        else if (k > begin) {
+            runs_[c][0] = {begin, end};
+            count = 1;
+        }
         run_count_[c] = static_cast<std::uint8_t>(count);
         std::uint32_t candidates = 0;
         for (int r = 0; r < count; ++r)

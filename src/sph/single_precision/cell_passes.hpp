@@ -79,16 +79,20 @@ template <int D>
 class CellPasses {
   public:
     // The cells at these positions (fluid and walls): the step's neighbour
-    // search. `boundary` may be null.
+    // search. `boundary` may be null. 3D passes that take each pair once
+    // read the tiles' neighbourhoods, not each cell's runs.
     void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
-                    Real radius) {
+                    Real radius, PairTerms pair_terms) {
+        const bool cell_runs = D == 2 || pair_terms != PairTerms::once;
         if (boundary)
-            cells_.build(fluid, boundary->positions(), radius, &boundary->static_bounds(),
-                         [boundary](const Box<D>& box, std::vector<std::uint32_t>& out) {
-                             boundary->within(box, out);
-                         });
+            cells_.build(
+                fluid, boundary->positions(), radius, &boundary->static_bounds(),
+                [boundary](const Box<D>& box, std::vector<std::uint32_t>& out) {
+                    boundary->within(box, out);
+                },
+                cell_runs);
         else
-            cells_.build(fluid, {}, radius);
+            cells_.build(fluid, {}, radius, nullptr, {}, cell_runs);
     }
 
     // state.density = sum_j m_j W_ij over fluid and wall particles.
@@ -851,8 +855,8 @@ template <int D>
 class Passes final : public SinglePasses<D> {
   public:
     void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
-                    Real radius) override {
-        cells_.find_cells(fluid, boundary, radius);
+                    Real radius, PairTerms pair_terms) override {
+        cells_.find_cells(fluid, boundary, radius, pair_terms);
     }
     void density(const Params<D>& params, KernelKind kind, const BoundaryParticles<D>* boundary,
                  State<D>& state) override {

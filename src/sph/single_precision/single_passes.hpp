@@ -40,9 +40,10 @@ class SinglePasses {
   public:
     virtual ~SinglePasses() = default;
     // The grid cells at these positions (fluid and walls): the step's
-    // neighbour search. `boundary` may be null.
+    // neighbour search. `boundary` may be null. `pair_terms`: the
+    // solver.pair_terms the passes will take (params.pair_terms).
     virtual void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
-                            Real radius) = 0;
+                            Real radius, PairTerms pair_terms) = 0;
     // state.density = sum_j m_j W_ij over fluid and wall particles.
     virtual void density(const Params<D>& params, KernelKind kernel,
                          const BoundaryParticles<D>* boundary, State<D>& state) = 0;

@@ -27,7 +27,7 @@ void density(const Params<D>& params, const Kernel& kernel, StepContext<D>& cont
     SinglePasses<D>& cells = *single;
     {
         auto timed = context.time(Stage::neighbour_search);
-        cells.find_cells(state.position, context.boundary, params.h);
+        cells.find_cells(state.position, context.boundary, params.h, params.pair_terms);
     }
     auto timed = context.time(Stage::density);
     cells.density(params, params.kernel, context.boundary, state);

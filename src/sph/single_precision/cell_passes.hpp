@@ -84,6 +84,7 @@ class CellPasses {
     void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
                     Real radius, PairTerms pair_terms) {
         const bool cell_runs = D == 2 || pair_terms != PairTerms::once;
+        near_saved_ = false;
         if (boundary)
             cells_.build(
                 fluid, boundary->positions(), radius, &boundary->static_bounds(),
@@ -116,6 +117,8 @@ class CellPasses {
         const auto fields = [&](Buffers& b, const auto& copy) {
             copy(sorted_.mass, b.mass, 0.f);
         };
+        if (once)
+            resize_with_headroom(near_blocks_, total * NearBlocks::slot_size);
         for_each_cell(
             once ? 1 : 0, fields, [&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
                 const Lanes l = b.lanes();
@@ -132,12 +135,15 @@ class CellPasses {
                         state.density[order[k]] =
                             sum_pairs_once<float, 0>(l, k, x_i, kernel.h, term, {});
                     else
-                        sums_[0][k] +=
-                            sum_pairs_once<float, 1>(l, k, x_i, kernel.h, term, b.reactions());
+                        sums_[0][k] += sum_pairs_once<float, 1>(
+                            l, k, x_i, kernel.h, term, b.reactions(), {near_slot(k), true, false});
                 }
             });
-        if (once)
+        if (once) {
             finish([&](std::uint32_t k, const FVec& sum) { state.density[order[k]] = sum[0]; });
+            near_saved_ = true;
+            near_support_ = kernel.h;
+        }
     }
 
     // state.acceleration = the pressure acceleration with the viscosities
@@ -179,6 +185,7 @@ class CellPasses {
             }
         }
         const bool once = D == 3 && params.pair_terms == PairTerms::once;
+        const bool near_saved = once && near_saved_ && near_support_ == kernel.h;
         const bool hydrostatic_walls = params.wall_gravity != Vec<D>(0);
         const FVec wall_gravity(params.wall_gravity);
         // Compiled for each set of viscosities (PairViscosities::dispatch) and
@@ -256,7 +263,8 @@ class CellPasses {
                                 Vec<D>(sum_pairs_once<FVec, 0>(l, k, x_i, kernel.h, term, {}));
                         else {
                             const FVec a_i =
-                                sum_pairs_once<FVec, -1>(l, k, x_i, kernel.h, term, b.reactions());
+                                sum_pairs_once<FVec, -1>(l, k, x_i, kernel.h, term, b.reactions(),
+                                                         {near_slot(k), false, near_saved});
                             for (int a = 0; a < D; ++a)
                                 sums_[a][k] += a_i[a];
                         }
@@ -687,6 +695,19 @@ class CellPasses {
             x[a] = float(cells_.sorted_positions(a)[k] - reference[a]);
         return x;
     }
+    // 3D: a particle's blocks within reach, as the density pass found them,
+    // for the pressure pass of the same step to read instead of testing the
+    // blocks again: the tiles' layouts and the positions are the same in
+    // both (the tests were a fifth of the pressure pass). A slot a particle:
+    // a header (the count, those before the reactions' runs, whether its
+    // own term is added; `unsaved` when they did not fit) and the blocks'
+    // first entries.
+    struct NearBlocks {
+        static constexpr std::size_t slot_size = 16;
+        static constexpr std::uint16_t unsaved = 0xffff;
+        std::uint16_t* slot = nullptr;
+        bool save = false, load = false;
+    };
     // The 3D passes' sum for a particle at x_i and a kernel of support
     // `support`, over the runs of candidates in `lanes`; each term of a run
     // with reaction, times `reaction` (+1 or -1), is also added to that
@@ -704,7 +725,8 @@ class CellPasses {
     // lanes by halves: it does not depend on the thread count.
     template <class T, int reaction, class Term>
     static T sum_pairs_once(const Lanes& lanes, std::uint32_t k_i, const FVec& x_i, float support,
-                            const Term& term_argument, const std::array<float*, D>& reaction_sums) {
+                            const Term& term_argument, const std::array<float*, D>& reaction_sums,
+                            NearBlocks near = {}) {
         static_assert(D == 3);
         const Term term = term_argument;
         const Lanes l = lanes; // local copies, as in sum_candidates
@@ -715,20 +737,38 @@ class CellPasses {
         // First the blocks with a candidate within reach, listed without
         // a branch: a branch a block, taken about half the time at
         // random, cost more in mispredictions than the skipped terms.
+        // Or the list the density pass saved (NearBlocks).
         std::uint32_t* const near_blocks = l.near_blocks;
         std::size_t near_count = 0, before_forward = 0;
         const std::uint32_t own = l.own_at + (k_i - l.own_begin);
         bool self = false;
-        for (int r = 0; r < l.run_count; ++r) {
-            const Run run = l.runs[r];
-            self = self || run.after_own;
-            for (std::uint32_t block = run.after_own ? own + 1 : run.begin; block < run.end;
-                 block += skip_block) {
-                near_blocks[near_count] = block;
-                near_count += any_within(l, block, xi, yi, zi, reach2) ? 1 : 0;
+        if (near.load && near.slot[0] != NearBlocks::unsaved) {
+            const std::uint16_t header = near.slot[0];
+            near_count = header & 63;
+            before_forward = header >> 6 & 63;
+            self = (header >> 12 & 1) != 0;
+            for (std::size_t k = 0; k < near_count; ++k)
+                near_blocks[k] = near.slot[1 + k];
+        } else {
+            for (int r = 0; r < l.run_count; ++r) {
+                const Run run = l.runs[r];
+                self = self || run.after_own;
+                for (std::uint32_t block = run.after_own ? own + 1 : run.begin; block < run.end;
+                     block += skip_block) {
+                    near_blocks[near_count] = block;
+                    near_count += any_within(l, block, xi, yi, zi, reach2) ? 1 : 0;
+                }
+                if (!run.reaction)
+                    before_forward = near_count;
             }
-            if (!run.reaction)
-                before_forward = near_count;
+            if (near.save) {
+                const bool fits = near_count < NearBlocks::slot_size && l.padded <= 0xffff;
+                near.slot[0] =
+                    fits ? std::uint16_t(near_count | before_forward << 6 | (self ? 1 : 0) << 12)
+                         : NearBlocks::unsaved;
+                for (std::size_t k = 0; fits && k < near_count; ++k)
+                    near.slot[1 + k] = static_cast<std::uint16_t>(near_blocks[k]);
+            }
         }
         for (std::size_t k = 0; k < before_forward; ++k) {
             const std::size_t block = near_blocks[k];
@@ -846,6 +886,15 @@ class CellPasses {
     SortedFields sorted_;
     // 3D: each fluid particle's sums by sorted entry (for_each_cell).
     std::array<std::vector<float>, D> sums_;
+    // 3D, pairs once: the density pass's blocks within reach by sorted
+    // entry (NearBlocks), for the pressure pass when near_saved_ (the same
+    // cells and support).
+    std::vector<std::uint16_t> near_blocks_;
+    bool near_saved_ = false;
+    float near_support_ = 0;
+    std::uint16_t* near_slot(std::size_t k) {
+        return near_blocks_.data() + k * NearBlocks::slot_size;
+    }
     std::vector<Buffers> buffers_;
 };
 

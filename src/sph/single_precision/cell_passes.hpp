@@ -12,21 +12,26 @@
 // 0 (the 3D passes skip blocks of them: sum_pairs_once). The same grid
 // cells replace the neighbour search.
 //
-// In 3D each pair of fluid particles in two different cells is computed
-// once, by the cell that comes first along the Morton curve, which adds the
-// pair's term to its particle and the term's reaction to the other's
-// (Newton's third law; for_each_cell): half the pair terms, with the cells
-// taken a tile of 4^3 at a time so that their neighbourhoods stay cached.
-// Taking each pair from both sides, as 2D does, measured at par there
-// (docs/benchmarks.md).
+// In 3D each pair of fluid particles is computed once, by the cell that
+// comes first in (z, y, x) order (within a cell, by the particle that comes
+// first), which adds the pair's term to its particle and the term's reaction
+// to the other's (Newton's third law; for_each_cell): half the pair terms.
+// The cells go a tile of 4^3 at a time, and the tile's neighbourhood (6^3
+// cells) is copied once, in rows of cells along x, so that a cell's
+// candidates are a few runs of it (before 2026-12-07 each cell copied its
+// own 14 cells, field by field: 29% of the step). The pressure pass reads
+// which blocks of candidates are within reach from the density pass of the
+// same step. Taking each pair from both sides, as 2D does, measured at par
+// there (docs/benchmarks.md, "The 3D passes a tile at a time").
 //
-// Accuracy: positions are copied as offsets from the cell's first particle,
-// computed in double, so a domain far from the origin loses nothing; an
-// offset is at most two cells long and keeps 24 bits. The per-particle sums
+// Accuracy: positions are copied as offsets from the cell's (in 3D, the
+// tile's) first particle, computed in double, so a domain far from the
+// origin loses nothing; an offset is at most two cells long (six in 3D) and
+// keeps 24 bits (21 relative to a cell). The per-particle sums
 // are taken in float and stored in double. Each particle's sum runs over the
-// candidates in the cells' sorted order (in 3D: its own terms so, then the
-// reactions in the tiles' fixed order), so the result is the same with any
-// thread count. The float form of each formula is the double one's
+// candidates in the cells' sorted order (in 3D: its own terms in the runs'
+// order, then the reactions in the tiles' fixed order), so the result is the
+// same with any thread count. The float form of each formula is the double one's
 // (kernels, MonaghanViscosity, MorrisViscosity), with the same equations as
 // sph/density.hpp and sph/pressure_acceleration.hpp:
 //   rho_i = sum_j m_j W_ij, walls included with m_b = rho0 V_b

@@ -525,7 +525,10 @@ class CellPasses {
     // row along x after another, then their walls so, each row that holds
     // any followed by a block of padding (a block that reads past a row's
     // end reads that).
-    // Returns where the walls start.
+    // Returns where the walls start. Not inlined, nor are copy_tile and
+    // cell_runs: inlined into for_each_cell, they made GCC stop inlining the
+    // kernel into the pair loops, which then ran scalar (the pressure pass
+    // 600 against 120 ns a particle-step).
     [[gnu::noinline]] std::uint32_t lay_out_tile(Buffers& b) const {
         b.pieces.clear();
         b.pads.clear();

@@ -122,8 +122,10 @@ class CellPasses {
         const auto fields = [&](Buffers& b, const auto& copy) {
             copy(sorted_.mass, b.mass, 0.f);
         };
-        if (once)
-            resize_with_headroom(near_blocks_, total * NearBlocks::slot_size);
+        if (once) {
+            near_slot_size_ = next_near_slot_size_;
+            resize_with_headroom(near_blocks_, total * near_slot_size_);
+        }
         for_each_cell(
             once ? 1 : 0, fields, [&](const Cell& cell, Buffers& b, const Vec<D>& reference) {
                 const Lanes l = b.lanes();
@@ -139,12 +141,25 @@ class CellPasses {
                     else if (!once)
                         state.density[order[k]] =
                             sum_pairs_once<float, 0>(l, k, x_i, kernel.h, term, {});
-                    else
-                        sums_[0][k] += sum_pairs_once<float, 1>(
-                            l, k, x_i, kernel.h, term, b.reactions(), {near_slot(k), true, false});
+                    else {
+                        sums_[0][k] +=
+                            sum_pairs_once<float, 1>(l, k, x_i, kernel.h, term, b.reactions(),
+                                                     {near_slot(k), near_slot_size_, true, false});
+                        b.unsaved += near_slot(k)[0] == NearBlocks::unsaved ? 1 : 0;
+                    }
                 }
             });
         if (once) {
+            // Wider slots for the next step when more than 1% of the
+            // particles had more blocks within reach than a slot holds (a
+            // kernel's support of 3.5 spacings has about 25).
+            std::size_t unsaved = 0;
+            for (Buffers& b : buffers_) {
+                unsaved += b.unsaved;
+                b.unsaved = 0;
+            }
+            if (unsaved * 100 > n && near_slot_size_ < NearBlocks::largest_slot)
+                next_near_slot_size_ = 2 * near_slot_size_;
             finish([&](std::uint32_t k, const FVec& sum) { state.density[order[k]] = sum[0]; });
             near_saved_ = true;
             near_support_ = kernel.h;
@@ -267,9 +282,9 @@ class CellPasses {
                             state.acceleration[order[k]] =
                                 Vec<D>(sum_pairs_once<FVec, 0>(l, k, x_i, kernel.h, term, {}));
                         else {
-                            const FVec a_i =
-                                sum_pairs_once<FVec, -1>(l, k, x_i, kernel.h, term, b.reactions(),
-                                                         {near_slot(k), false, near_saved});
+                            const FVec a_i = sum_pairs_once<FVec, -1>(
+                                l, k, x_i, kernel.h, term, b.reactions(),
+                                {near_slot(k), near_slot_size_, false, near_saved});
                             for (int a = 0; a < D; ++a)
                                 sums_[a][k] += a_i[a];
                         }
@@ -362,6 +377,7 @@ class CellPasses {
         std::vector<std::uint32_t> pads;
         std::array<Run, max_runs> runs;
         int run_count = 0;
+        std::size_t unsaved = 0; // particles whose NearBlocks did not fit
         std::uint32_t own_at = 0, own_begin = 0;
 
         Lanes lanes() {
@@ -710,10 +726,13 @@ class CellPasses {
     // a header (the count, those before the reactions' runs, whether its
     // own term is added; `unsaved` when they did not fit) and the blocks'
     // first entries.
+    // Slots of 16 short integers, twice as many when too small (density),
+    // up to 64.
     struct NearBlocks {
-        static constexpr std::size_t slot_size = 16;
+        static constexpr std::size_t largest_slot = 64;
         static constexpr std::uint16_t unsaved = 0xffff;
         std::uint16_t* slot = nullptr;
+        std::size_t slot_size = 16;
         bool save = false, load = false;
     };
     // The 3D passes' sum for a particle at x_i and a kernel of support
@@ -770,7 +789,7 @@ class CellPasses {
                     before_forward = near_count;
             }
             if (near.save) {
-                const bool fits = near_count < NearBlocks::slot_size && l.padded <= 0xffff;
+                const bool fits = near_count < near.slot_size && l.padded <= 0xffff;
                 near.slot[0] =
                     fits ? std::uint16_t(near_count | before_forward << 6 | (self ? 1 : 0) << 12)
                          : NearBlocks::unsaved;
@@ -900,8 +919,9 @@ class CellPasses {
     std::vector<std::uint16_t> near_blocks_;
     bool near_saved_ = false;
     float near_support_ = 0;
+    std::size_t near_slot_size_ = 16, next_near_slot_size_ = 16;
     std::uint16_t* near_slot(std::size_t k) {
-        return near_blocks_.data() + k * NearBlocks::slot_size;
+        return near_blocks_.data() + k * near_slot_size_;
     }
     std::vector<Buffers> buffers_;
 };

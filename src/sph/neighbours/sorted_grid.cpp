@@ -371,14 +371,11 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
 
 template <int D>
 std::uint64_t SortedGrid<D>::tile(std::size_t cell, int& colour) const {
-    Vec<D> x;
-    for (int a = 0; a < D; ++a)
-        x[a] = sorted_x_[a][cell_start_[cell]];
-    const Coord at = cell_of(x);
+    const Coordinates at = coordinates(cell);
     std::uint64_t key = 0;
     colour = 0;
     for (int a = D - 1; a >= 0; --a) {
-        key = key << 21 | (at[a] >> tile_shift);
+        key = key << 21 | std::uint64_t(at[a] >> tile_shift);
         colour = 2 * colour + int(at[a] >> tile_shift & 1);
     }
     return key;

@@ -153,6 +153,7 @@ class SortedGrid final : public NeighbourSearch<D> {
         return s[0][c & 0xff] | s[1][c >> 8 & 0xff] | s[2][c >> 16 & 0xff];
     }
     void counting_sort(std::size_t key_count);
+    void split_codes(std::size_t key_count, std::size_t threads);
     void radix_sort(int key_bits);
     void hash_cells();
     Range cell_range(std::uint64_t key) const;
@@ -182,6 +183,12 @@ class SortedGrid final : public NeighbourSearch<D> {
     std::vector<std::uint32_t> order_buffer_;   // radix sort
     std::array<std::vector<Real>, D> sorted_x_; // positions in cell order, one array per axis
     std::vector<std::uint32_t> key_start_;      // table: first sorted particle per key, + end
+    // counting_sort: the particles and occupied cells in each thread's codes.
+    struct RangeTotal {
+        std::uint32_t particles = 0, cells = 0;
+    };
+    std::vector<RangeTotal> range_totals_;
+    std::vector<std::uint64_t> range_cuts_, code_sample_; // split_codes
     std::vector<std::uint32_t> cell_start_;     // occupied cells: first sorted particle, + end
     std::vector<std::uint64_t> hash_keys_;      // open addressing, empty = ~0
     std::vector<std::uint32_t> hash_cells_;     // cell number per slot

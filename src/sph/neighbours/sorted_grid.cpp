@@ -209,7 +209,9 @@ void SortedGrid<D>::counting_sort(std::size_t key_count) {
                             hi = range_cuts_[(t + 1) * threads / count];
         std::uint32_t* const table = key_start_.data() + 1;
         std::fill(table + lo, table + hi, 0u);
-        const auto ours = [&](std::uint64_t key) { return key - lo < hi - lo; };
+        const auto ours = [&](std::uint64_t key) {
+            return key - lo < hi - lo;
+        };
         for (std::size_t i = 0; i < n; ++i)
             if (ours(keys_[i]))
                 ++table[keys_[i]];
@@ -276,9 +278,9 @@ void SortedGrid<D>::split_codes(std::size_t key_count, std::size_t threads) {
     for (std::size_t t = 1; t < threads; ++t) {
         // The first sampled code with this share of the work below it.
         const double share = total * double(t) / double(threads);
-        while (j < samples && double(code_sample_[j]) + particle_cost * double(n) *
-                                                            double(j) / double(samples) <
-                                  share)
+        while (j < samples &&
+               double(code_sample_[j]) + particle_cost * double(n) * double(j) / double(samples) <
+                   share)
             ++j;
         range_cuts_[t] = j < samples ? code_sample_[j] : key_count;
     }

@@ -189,9 +189,9 @@ class SortedGrid final : public NeighbourSearch<D> {
     };
     std::vector<RangeTotal> range_totals_;
     std::vector<std::uint64_t> range_cuts_, code_sample_; // split_codes
-    std::vector<std::uint32_t> cell_start_;     // occupied cells: first sorted particle, + end
-    std::vector<std::uint64_t> hash_keys_;      // open addressing, empty = ~0
-    std::vector<std::uint32_t> hash_cells_;     // cell number per slot
+    std::vector<std::uint32_t> cell_start_; // occupied cells: first sorted particle, + end
+    std::vector<std::uint64_t> hash_keys_;  // open addressing, empty = ~0
+    std::vector<std::uint32_t> hash_cells_; // cell number per slot
     int hash_shift_ = 64;
 
     std::vector<Scratch> scratch_;

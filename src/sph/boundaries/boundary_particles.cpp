@@ -143,7 +143,7 @@ void BoundaryParticles<D>::within(const Box<D>& box, std::vector<std::uint32_t>&
     // fastest), so rows of cells visited in that order give them in
     // increasing order.
     const Grid& grid = grid_;
-    Cell lo, hi;
+    Cell lo(0), hi(0); // (GCC 12 cannot tell the loop below sets them)
     bool any = moving_begin_ > 0;
     for (int a = 0; a < D; ++a) {
         // floor as in cell_of, clamped to the grid before the conversion
@@ -158,15 +158,15 @@ void BoundaryParticles<D>::within(const Box<D>& box, std::vector<std::uint32_t>&
         hi[a] = std::min<std::int64_t>(cell(box.max[a]), grid.cells[a] - 1);
         any = any && lo[a] <= hi[a];
     }
+    // By every thread (SelectInOrder): one alone took 1.4% of the 3D dam
+    // break's step, at 97k particles, while the others waited.
+    within_.clear();
     if (any)
-        for_each_row_between(grid, lo, hi, [&](std::uint32_t begin, std::uint32_t end) {
-            for (std::uint32_t b = begin; b < end; ++b)
-                if (inside(positions_[b]))
-                    out.push_back(b);
-        });
-    for (std::size_t b = moving_begin_; b < positions_.size(); ++b)
-        if (inside(positions_[b]))
-            out.push_back(static_cast<std::uint32_t>(b));
+        for_each_row_between(
+            grid, lo, hi, [&](std::uint32_t begin, std::uint32_t end) { within_.add(begin, end); });
+    within_.add(static_cast<std::uint32_t>(moving_begin_),
+                static_cast<std::uint32_t>(positions_.size()));
+    within_.append_to(out, [&](std::uint32_t b) { return inside(positions_[b]); });
 }
 
 template <int D>

@@ -13,6 +13,7 @@
 
 #include "sph/kernels.hpp"
 #include "sph/neighbours/neighbour_list.hpp"
+#include "sph/select_in_order.hpp"
 #include "sph/vec.hpp"
 
 #include <span>
@@ -165,6 +166,7 @@ class BoundaryParticles {
     // much memory as the lists it fills (it runs one call at a time).
     mutable std::vector<std::vector<std::uint32_t>> block_rows_;
     mutable std::vector<std::size_t> block_counts_; // entries of block_rows_ in use
+    mutable SelectInOrder within_;                  // scratch of within()
 };
 
 } // namespace sph

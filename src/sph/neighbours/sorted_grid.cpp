@@ -436,9 +436,11 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
     else {
         radix_sort(key_bits);
         cell_start_.clear();
-        for (std::size_t k = 0; k < n; ++k)
-            if (k == 0 || sorted_keys_[k] != sorted_keys_[k - 1])
-                cell_start_.push_back(static_cast<std::uint32_t>(k));
+        starts_.clear();
+        starts_.add(0, static_cast<std::uint32_t>(n));
+        starts_.append_to(cell_start_, [&](std::uint32_t k) {
+            return k == 0 || sorted_keys_[k] != sorted_keys_[k - 1];
+        });
         cell_start_.push_back(static_cast<std::uint32_t>(n));
         hash_cells();
     }

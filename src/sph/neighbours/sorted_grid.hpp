@@ -14,6 +14,7 @@
 // gets coarser cells along that axis. Both stay exact, only slower.
 
 #include "sph/neighbours/neighbour_search.hpp"
+#include "sph/select_in_order.hpp"
 
 #include <array>
 #include <cstdint>
@@ -189,6 +190,7 @@ class SortedGrid final : public NeighbourSearch<D> {
     };
     std::vector<RangeTotal> range_totals_;
     std::vector<std::uint64_t> range_cuts_, code_sample_; // split_codes
+    SelectInOrder starts_;                  // the hashed cells' starts (sort_into_cells)
     std::vector<std::uint32_t> cell_start_; // occupied cells: first sorted particle, + end
     std::vector<std::uint64_t> hash_keys_;  // open addressing, empty = ~0
     std::vector<std::uint32_t> hash_cells_; // cell number per slot

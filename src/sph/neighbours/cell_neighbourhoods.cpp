@@ -11,7 +11,8 @@ namespace sph {
 template <int D>
 void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls,
                                   Real radius, const Box<D>* walls_bounds,
-                                  const WallsWithin& walls_within, bool cell_runs) {
+                                  const WallsWithin& walls_within, bool cell_runs,
+                                  bool walls_inside) {
     fluid_count_ = fluid.size();
     const std::size_t fluid_count = fluid.size();
     // The walls within two cells of the fluid's box (a non-finite position
@@ -53,8 +54,10 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
         for (std::size_t i = 0; i < wall_count; ++i)
             positions_[fluid_count + i] = walls[wall_index_[i]];
     }
-    const auto order = walls_bounds ? grid_.cell_order(positions_, radius, *walls_bounds)
-                                    : grid_.cell_order(positions_, radius);
+    const auto order = !walls_bounds ? grid_.cell_order(positions_, radius)
+                       : walls_inside
+                           ? grid_.cell_order(positions_, radius, *walls_bounds, fluid_box)
+                           : grid_.cell_order(positions_, radius, *walls_bounds);
 
     // Each grid cell's fluid and, for a cell with fluid, its neighbourhood.
     const std::size_t grid_cells = grid_.cell_count();

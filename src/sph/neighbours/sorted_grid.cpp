@@ -412,7 +412,7 @@ template <int D>
 void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radius) {
     const std::size_t n = positions.size();
 
-    auto [lo, hi] = finite_bounds(positions);
+    auto [lo, hi] = outside_ ? *outside_ : finite_bounds(positions);
     if (within_)
         for (int a = 0; a < D; ++a)
             if (within_->min[a] <= within_->max[a]) {
@@ -759,6 +759,21 @@ std::span<const std::uint32_t> SortedGrid<D>::cell_order(std::span<const Vec<D>>
         throw;
     }
     within_ = nullptr;
+    return order_;
+}
+
+template <int D>
+std::span<const std::uint32_t> SortedGrid<D>::cell_order(std::span<const Vec<D>> positions,
+                                                         Real radius, const Box<D>& within,
+                                                         const Box<D>& outside) {
+    outside_ = &outside;
+    try {
+        cell_order(positions, radius, within);
+    } catch (...) {
+        outside_ = nullptr;
+        throw;
+    }
+    outside_ = nullptr;
     return order_;
 }
 

@@ -51,6 +51,12 @@ class SortedGrid final : public NeighbourSearch<D> {
     // rank holds some).
     std::span<const std::uint32_t> cell_order(std::span<const Vec<D>> positions, Real radius,
                                               const Box<D>& within);
+    // The same when the positions outside `within` all lie in `outside`
+    // (their finite box, or larger): the grid is then laid without reading
+    // the positions for their box (the walls in `within`, the fluid outside:
+    // 1% of the 3D dam break's step).
+    std::span<const std::uint32_t> cell_order(std::span<const Vec<D>> positions, Real radius,
+                                              const Box<D>& within, const Box<D>& outside);
 
     // Each position's cell key (its cell's Morton code) on the grid that
     // cell_order would lay over positions whose finite bounding box is
@@ -167,6 +173,8 @@ class SortedGrid final : public NeighbourSearch<D> {
 
     // A box the grid covers besides the positions (cell_order's `within`).
     const Box<D>* within_ = nullptr;
+    // The box of the positions outside within_ (cell_order's `outside`).
+    const Box<D>* outside_ = nullptr;
     // The grid of the last call.
     Vec<D> origin_{0};
     Vec<D> inverse_cell_size_{1};

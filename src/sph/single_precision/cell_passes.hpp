@@ -96,7 +96,7 @@ class CellPasses {
                 [boundary](const Box<D>& box, std::vector<std::uint32_t>& out) {
                     boundary->within(box, out);
                 },
-                cell_runs);
+                cell_runs, !boundary->has_moving());
         else
             cells_.build(fluid, {}, radius, nullptr, {}, cell_runs);
     }

@@ -240,9 +240,12 @@ void Simulation<D>::step_by(Real dt) {
     // The sources act first, outside the watchdog's retries, so a retried
     // step keeps what they added.
     emit_particles();
+    // Over ranks, all of them: the partition's step fills the state from a
+    // halo of its own, and the lighter save is tested on one process only.
+    const StepInputs inputs = partition_ ? StepInputs{} : solver_->step_inputs(params_);
     {
         StageTimes::Scope timed(&stages_, Stage::watchdog);
-        saved_.copy_from(state_);
+        saved_.copy_from(state_, inputs);
     }
     const std::uint64_t steps_before = steps_;
     const StepCounters counters_before = counters_;
@@ -254,7 +257,7 @@ void Simulation<D>::step_by(Real dt) {
         if (retry >= params_.watchdog.retries)
             throw UnstableError(steps_before + 1, time_, std::move(*problem), retry,
                                 dt / Real(pieces), start_cause());
-        state_ = saved_;
+        state_.copy_from(saved_, inputs);
         steps_ = steps_before;
         counters_ = counters_before;
         counters_.retries += std::uint64_t(retry) + 1;

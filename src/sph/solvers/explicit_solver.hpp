@@ -16,6 +16,13 @@ template <int D>
 class ExplicitSolver : public Solver<D> {
   public:
     TimeStepModel time_step_model() const override { return {.carries_sound = true}; }
+    // The accelerations a Verlet step starts from and a carried density;
+    // the densities and pressures otherwise come from the positions first.
+    StepInputs step_inputs(const Params<D>& params) const override {
+        return {.acceleration = params.integrator == Integrator::verlet,
+                .density = carries_fields(params),
+                .pressure = false};
+    }
 
     StepReport step(const Params<D>& params, Real dt, State<D>& state,
                     StepContext<D>& context) override {

@@ -215,6 +215,10 @@ class Solver {
     // the entries of the particles the step holds (the halo's from their
     // owners), after it keeps the owned ones (docs/mpi.md).
     virtual std::span<std::vector<Real>* const> kept_arrays() { return {}; }
+    // The state's arrays a step reads as the last step left them (besides
+    // positions, velocities and ids): what the watchdog saves for a retry.
+    // All of them unless the solver knows better.
+    virtual StepInputs step_inputs(const Params<D>& /*params*/) const { return {}; }
 };
 
 // What a solver can do and what it chooses when the scene says "auto",

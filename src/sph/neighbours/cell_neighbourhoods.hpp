@@ -92,6 +92,9 @@ class CellNeighbourhoods {
         return tile_start_[colour_start_[q] + t];
     }
     std::span<const std::uint32_t> tiled_cells() const { return tiled_; }
+    // Tile t of colour q among all the tiles, 0 .. tiles() - 1.
+    std::size_t tile_index(int q, std::size_t t) const { return colour_start_[q] + t; }
+    std::size_t tiles() const { return colour_start_[colours]; }
 
     // For a pass that copies each tile's neighbourhood once (3D, after
     // tile_cells): a tile's cells and the cells around it, halo_width^D of

@@ -280,3 +280,29 @@ TEST_CASE("State::copy_from copies every array, with every thread", "[reorder]")
         CHECK(copy.id == source.id);
     }
 }
+
+TEST_CASE("a cell order is the same whatever the threads that sort", "[reorder]") {
+    // The counting sort shares the codes out among the threads it gets; a
+    // call from inside a parallel region gets one, fewer than it asks for.
+    const State<2> state = scrambled_state(5000);
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(2);
+    SortedGrid<2> grid;
+    const auto first = grid.cell_order(state.position, 0.1);
+    const std::vector<std::uint32_t> order(first.begin(), first.end());
+    std::vector<std::uint32_t> starts;
+    for (std::size_t c = 0; c <= grid.cell_count(); ++c)
+        starts.push_back(grid.cell_begin(c));
+    std::vector<std::uint32_t> inner_order, inner_starts;
+#pragma omp parallel num_threads(2)
+#pragma omp single
+    {
+        const auto inner = grid.cell_order(state.position, 0.1);
+        inner_order.assign(inner.begin(), inner.end());
+        for (std::size_t c = 0; c <= grid.cell_count(); ++c)
+            inner_starts.push_back(grid.cell_begin(c));
+    }
+    omp_set_num_threads(threads);
+    CHECK(inner_order == order);
+    CHECK(inner_starts == starts);
+}

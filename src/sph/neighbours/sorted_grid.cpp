@@ -227,8 +227,8 @@ void SortedGrid<D>::counting_sort(std::size_t key_count) {
 #pragma omp single
         {
             std::uint32_t cells = 0;
-            for (const RangeTotal& range : range_totals_)
-                cells += range.cells;
+            for (std::size_t u = 0; u < count; ++u)
+                cells += range_totals_[u].cells;
             resize_with_headroom(cell_start_, cells + 1);
             cell_start_[cells] = static_cast<std::uint32_t>(n);
         }

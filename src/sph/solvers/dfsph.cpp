@@ -47,7 +47,51 @@ constexpr Real jacobi_relaxation = 0.5;
 // A wall particle counts twice beside a fluid particle, in the force and in
 // the rate alike: it mirrors the particle's pressure and velocity (above).
 constexpr Real wall_mirror = 2;
+
+template <int D>
+Float4 to_float4(const Vec<D>& v) {
+    if constexpr (D == 2)
+        return Float4{float(v.x), float(v.y), 0, 0};
+    else
+        return Float4{float(v.x), float(v.y), float(v.z), 0};
+}
+
+template <int D>
+Vec<D> to_vec(Float4 f) {
+    if constexpr (D == 2)
+        return Vec<D>(f[0], f[1]);
+    else
+        return Vec<D>(f[0], f[1], f[2]);
+}
+
+// sum over e in [begin, end) of term(e), four partial sums (so that their
+// additions overlap: one alone waits on its adder's latency) added in a
+// fixed order, so the bits do not depend on the thread count.
+template <class Term>
+Float4 sum_four_ways(std::uint32_t begin, std::uint32_t end, Term term) {
+    Float4 a0{}, a1{}, a2{}, a3{};
+    std::uint32_t e = begin;
+    for (; e + 4 <= end; e += 4) {
+        a0 += term(e);
+        a1 += term(e + 1);
+        a2 += term(e + 2);
+        a3 += term(e + 3);
+    }
+    for (; e < end; ++e)
+        a0 += term(e);
+    return (a0 + a1) + (a2 + a3);
+}
 } // namespace
+
+template <int D>
+void DfsphSolver<D>::round_velocities(const State<D>& state) {
+    const std::size_t n = state.size();
+    resize_with_headroom(velocity_f_, n);
+    const std::span<Float4> rounded = velocity_f_;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+        rounded[i] = to_float4<D>(state.velocity[i]);
+}
 
 template <int D>
 template <class Kernel>
@@ -64,6 +108,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     auto timed = context.time(Stage::pressure_solve);
     factor_.resize(n);
     stiffness_.resize(n);
+    stiffness_f_.resize(n);
     stiffness_sum_.resize(n);
     source_.resize(n);
     residual_.resize(n);
@@ -82,7 +127,9 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
     // Local spans, not the members: loops that read members through `this`
     // stay scalar.
-    const std::span<glm::vec<D, float>> gradient = gradient_;
+    resize_with_headroom(pair_factor_, context.neighbours.pair_count());
+    const std::span<Float4> gradient = gradient_;
+    const std::span<Real> pair_factor = pair_factor_;
     const std::span<Vec<D>> wall_gradient = wall_gradient_, wall_sum = wall_sum_;
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
@@ -97,24 +144,39 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         const Vec<D> x_i = position[i];
         const Real mass = params.mass;
         const Kernel local_kernel = kernel;
+        // With the sums of the rounded g_ij, which the iterations use.
+        Float4 sum_f{}, squares_f{};
+        if constexpr (Kernel::smooth_at_origin) {
+            // g_ij = (m W'(r) / r) x_ij: the factor in a loop that
+            // vectorises (the square root and the kernel), then the vectors,
+            // whose stores into Float4 keep a loop scalar (measured: 20
+            // cycles a pair in one loop, 1 thread).
+            Real* factor = pair_factor.data();
 #pragma omp simd
-        for (std::size_t e = begin; e < end; ++e) {
-            const std::uint32_t j = index[e];
-            const Vec<D> x_ij = x_i - position[j];
-            const Real r = std::sqrt(squared_length<D>(x_ij));
-            const Vec<D> g = mass * pair_gradient(local_kernel, state, i, j, x_ij, r);
-            // Component by component: a whole vector assigned is a copy
-            // through memory that keeps the loop scalar (GCC 12). In 3D it
-            // stays scalar anyway (a stride-3 store); one array a component
-            // vectorised it but made the 2D iterations 15% slower (measured).
-            for (int k = 0; k < D; ++k)
-                gradient[e][k] = float(g[k]);
+            for (std::size_t e = begin; e < end; ++e) {
+                const Vec<D> x_ij = x_i - position[index[e]];
+                factor[e] = mass * local_kernel.dW_over_r(std::sqrt(squared_length<D>(x_ij)));
+            }
+            for (std::size_t e = begin; e < end; ++e) {
+                const Float4 g = float(factor[e]) * to_float4<D>(x_i - position[index[e]]);
+                gradient[e] = g;
+                sum_f += g;
+                squares_f += g * g;
+            }
+        } else {
+            for (std::size_t e = begin; e < end; ++e) {
+                const std::uint32_t j = index[e];
+                const Vec<D> x_ij = x_i - position[j];
+                const Real r = std::sqrt(squared_length<D>(x_ij));
+                const Float4 g =
+                    to_float4<D>(mass * pair_gradient(local_kernel, state, i, j, x_ij, r));
+                gradient[e] = g;
+                sum_f += g;
+                squares_f += g * g;
+            }
         }
-        const Vec<D> sum = sum_over_pairs(
-            pairs, i, [&](std::size_t e, std::uint32_t) { return Vec<D>(gradient[e]); });
-        const Real sum_squares = sum_over_pairs(pairs, i, [&](std::size_t e, std::uint32_t) {
-            return squared_length<D>(Vec<D>(gradient[e]));
-        });
+        const Vec<D> sum = to_vec<D>(sum_f);
+        const Real sum_squares = Real(squares_f[0]) + Real(squares_f[1]) + Real(squares_f[2]);
         Vec<D> walls_sum(0);
         if (context.boundary) {
             const auto xb = context.boundary->positions();
@@ -185,14 +247,24 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
                                           : 0;
     // Over ranks: the halo's velocities from their owners (the kick gave
     // the halo accelerations from incomplete neighbourhoods).
+    // The floats the iterations read follow: correct_velocities rounds what
+    // it changes, the halo's are rounded when they arrive.
+    const auto share_velocities = [&] {
+        context.share_halo(state.velocity);
+        if (context.halo)
+            round_velocities(state);
+    };
     context.share_halo(state.velocity);
+    round_velocities(state);
     velocity_at_start_ = state.velocity; // for a restart (below)
     if (settings.warm_start && previous.size() == n && scale > 0) {
 #pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t i = 0; i < n; ++i) {
             stiffness_[i] = state.density[i] < rho0 ? 0 : scale * previous[i];
+            stiffness_f_[i] = float(stiffness_[i]);
+        }
         correct_velocities(context, state);
-        context.share_halo(state.velocity);
+        share_velocities();
         sum = stiffness_;
     } else {
         sum.assign(n, 0);
@@ -207,24 +279,28 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
     int restarts = 0;
     int iterations = 0;
     for (;;) {
-        const std::span<const glm::vec<D, float>> gradient = gradient_;
+        const std::span<const Float4> gradient = gradient_, velocity_f = velocity_f_;
         const std::span<const Vec<D>> wall_sum = wall_sum_;
+        const std::span<float> stiffness_f = stiffness_f_;
         // The compression rate with the current velocities, and the source
         // each particle's stiffness answers: the predicted density error
         // (density solve) or the rate itself (divergence solve).
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t i = 0; i < n; ++i) {
-            // Plain loops over the fluid pairs here and in correct_velocities:
-            // their terms are a few products, and gathering v_j (s_j) into
-            // vector registers costs more than it saves (measured: both
-            // solves 1.8-3x slower with AVX-512 gathers; 1.24-1.39x with
-            // the rows' sums 8 pairs wide, docs/benchmarks.md).
-            // One running sum: four partial ones (the additions overlapping)
-            // were 2% faster in 3D and 20% slower in 2D (measured).
+            // A pair at a time here and in correct_velocities, its three
+            // components in one register: gathering v_j (s_j) of several
+            // pairs into wide registers costs more than it saves (measured:
+            // both solves 1.8-3x slower with AVX-512 gathers, AMD EPYC).
+            // sum_j g_ij . v_ij is the lanes' sum of sum_j g_ij * v_ij.
             const Vec<D> v_i = state.velocity[i];
-            Real rate = wall_mirror * glm::dot(wall_sum[i], v_i);
-            for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
-                rate += glm::dot(Vec<D>(gradient[e]), v_i - state.velocity[pairs.index[e]]);
+            const Float4 vf_i = velocity_f[i];
+            const std::uint32_t* index = pairs.index.data();
+            const Float4 pair_terms =
+                sum_four_ways(pairs.start[i], pairs.start[i + 1], [&](std::uint32_t e) {
+                    return gradient[e] * (vf_i - velocity_f[index[e]]);
+                });
+            Real rate = wall_mirror * glm::dot(wall_sum[i], v_i) + Real(pair_terms[0]) +
+                        Real(pair_terms[1]) + Real(pair_terms[2]);
             if (!wall_motion_.empty())
                 rate -= wall_mirror * wall_motion_[i];
             const Real source =
@@ -246,6 +322,7 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
             // taken below unless the solve stops.
             const Real updated = std::max(sum[i] + omega * source * factor_[i], Real(0));
             stiffness_[i] = updated - sum[i];
+            stiffness_f[i] = float(stiffness_[i]);
             next_sum_[i] = updated;
         }
         // Summed in particle order, not by an OpenMP reduction, so that the
@@ -263,6 +340,7 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
         } else if (error > 2 * first_error && error > tolerance && restarts < 4 &&
                    iterations < settings.max_iterations) {
             state.velocity = velocity_at_start_;
+            round_velocities(state);
             sum.assign(n, 0);
             omega /= 2;
             first_error = -1;
@@ -276,8 +354,11 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
         // Over ranks the halo's stiffnesses, then its corrected velocities,
         // are their owners' (a halo particle's own source is incomplete).
         context.share_halo(stiffness_);
+        if (context.halo)
+            for (std::size_t i = 0; i < n; ++i)
+                stiffness_f_[i] = float(stiffness_[i]);
         correct_velocities(context, state);
-        context.share_halo(state.velocity);
+        share_velocities();
         ++iterations;
     }
     previous = sum;
@@ -291,19 +372,24 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
 // layer, leaves the bottom layer at twice the hydrostatic pressure).
 // Gather: each particle corrects only its own velocity.
 template <int D>
-void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>& state) const {
+void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>& state) {
     const std::size_t n = state.size();
     const NeighbourList& pairs = context.neighbours;
-    const std::span<const glm::vec<D, float>> gradient = gradient_;
+    const std::span<const Float4> gradient = gradient_;
+    const std::span<Float4> velocity_f = velocity_f_;
     const std::span<const Vec<D>> wall_sum = wall_sum_;
     const std::span<const Real> stiffness = stiffness_;
+    const std::span<const float> stiffness_f = stiffness_f_;
+    const std::uint32_t* index = pairs.index.data();
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
-        const Real s_i = stiffness[i];
-        Vec<D> dv = -wall_mirror * s_i * wall_sum[i];
-        for (std::uint32_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e)
-            dv -= (s_i + stiffness[pairs.index[e]]) * Vec<D>(gradient[e]);
-        state.velocity[i] += dv;
+        const float sf_i = stiffness_f[i];
+        const Float4 pair_terms =
+            sum_four_ways(pairs.start[i], pairs.start[i + 1], [&](std::uint32_t e) {
+                return (sf_i + stiffness_f[index[e]]) * gradient[e];
+            });
+        state.velocity[i] -= wall_mirror * stiffness[i] * wall_sum[i] + to_vec<D>(pair_terms);
+        velocity_f[i] = to_float4<D>(state.velocity[i]);
     }
 }
 

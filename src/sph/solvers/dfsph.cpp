@@ -10,8 +10,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <optional>
 #include <span>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 // Notation. With g_ij = m grad W_ij (fluid pairs), w_ib = rho0 V_b grad W_ib
 // (wall pairs) and W_i = sum_b w_ib, a wall particle is the mirror image
@@ -48,49 +53,47 @@ constexpr Real jacobi_relaxation = 0.5;
 // the rate alike: it mirrors the particle's pressure and velocity (above).
 constexpr Real wall_mirror = 2;
 
-template <int D>
-Float4 to_float4(const Vec<D>& v) {
-    if constexpr (D == 2)
-        return Float4{float(v.x), float(v.y), 0, 0};
-    else
-        return Float4{float(v.x), float(v.y), float(v.z), 0};
+// A register's lanes from memory (slice_lanes floats at `at`), and back.
+// Through references, not values: a 32-byte vector passed by value changes
+// the ABI in a build without AVX (GCC's -Wpsabi).
+SPHCLIP_INLINE_IN_CLONES void load_lanes(Lanes& lanes, const float* at) {
+    std::memcpy(&lanes, at, sizeof lanes);
 }
 
-template <int D>
-Vec<D> to_vec(Float4 f) {
-    if constexpr (D == 2)
-        return Vec<D>(f[0], f[1]);
-    else
-        return Vec<D>(f[0], f[1], f[2]);
+// lanes[l] = values[index[l]]: AVX2's gather in a build for a processor
+// that has it (measured: the solves' iterations 7% faster than the lanes
+// loaded one at a time, Intel Xeon); a clone (sph/vector_clones.hpp)
+// loads them one at a time, since its source is the baseline's too.
+SPHCLIP_INLINE_IN_CLONES void gather_lanes(Lanes& lanes, const float* values,
+                                           const std::uint32_t* index) {
+#if defined(__AVX2__)
+    __m256i j;
+    std::memcpy(&j, index, sizeof j);
+    lanes = Lanes(_mm256_i32gather_ps(values, j, 4));
+#else
+    for (std::size_t l = 0; l < slice_lanes; ++l)
+        lanes[l] = values[index[l]];
+#endif
 }
 
-// sum over e in [begin, end) of term(e), four partial sums (so that their
-// additions overlap: one alone waits on its adder's latency) added in a
-// fixed order, so the bits do not depend on the thread count.
-template <class Term>
-Float4 sum_four_ways(std::uint32_t begin, std::uint32_t end, Term term) {
-    Float4 a0{}, a1{}, a2{}, a3{};
-    std::uint32_t e = begin;
-    for (; e + 4 <= end; e += 4) {
-        a0 += term(e);
-        a1 += term(e + 1);
-        a2 += term(e + 2);
-        a3 += term(e + 3);
-    }
-    for (; e < end; ++e)
-        a0 += term(e);
-    return (a0 + a1) + (a2 + a3);
+std::size_t slice_count(std::size_t n) {
+    return (n + slice_lanes - 1) / slice_lanes;
 }
 } // namespace
 
 template <int D>
 void DfsphSolver<D>::round_velocities(const State<D>& state) {
     const std::size_t n = state.size();
-    resize_with_headroom(velocity_f_, n);
-    const std::span<Float4> rounded = velocity_f_;
+    // Whole slices: the lanes past the last particle read 0.
+    for (std::vector<float>& component : velocity_f_)
+        resize_with_headroom(component, slice_count(n) * slice_lanes);
+    std::array<float*, D> rounded;
+    for (int k = 0; k < D; ++k)
+        rounded[k] = velocity_f_[k].data();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
-        rounded[i] = to_float4<D>(state.velocity[i]);
+        for (int k = 0; k < D; ++k)
+            rounded[k][i] = float(state.velocity[i][k]);
 }
 
 template <int D>
@@ -108,13 +111,35 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     auto timed = context.time(Stage::pressure_solve);
     factor_.resize(n);
     stiffness_.resize(n);
-    stiffness_f_.resize(n);
+    // Whole slices: the lanes past the last particle read 0.
+    const std::size_t slices = slice_count(n);
+    resize_with_headroom(stiffness_f_, slices * slice_lanes);
     stiffness_sum_.resize(n);
     source_.resize(n);
     residual_.resize(n);
     next_sum_.resize(n);
-    // With the lists' padding: the loops over a row read whole vectors.
-    resize_with_headroom(gradient_, context.neighbours.pair_count() + simd_lanes);
+    // The slices' columns: as many as the slice's longest row.
+    {
+        const NeighbourList& pairs = context.neighbours;
+        slice_start_.resize(slices + 1);
+        std::uint32_t* columns = slice_start_.data();
+#pragma omp parallel for schedule(static)
+        for (std::size_t slice = 0; slice < slices; ++slice) {
+            std::uint32_t longest = 0;
+            for (std::size_t i = slice * slice_lanes; i < std::min(n, (slice + 1) * slice_lanes);
+                 ++i)
+                longest = std::max(longest, pairs.start[i + 1] - pairs.start[i]);
+            columns[slice + 1] = longest;
+        }
+        columns[0] = 0;
+        for (std::size_t slice = 0; slice < slices; ++slice)
+            columns[slice + 1] += columns[slice];
+        const std::size_t entries = std::size_t(columns[slices]) * slice_lanes;
+        resize_with_headroom(slice_index_, entries);
+        for (std::vector<float>& component : slice_gradient_)
+            resize_with_headroom(component, entries);
+        resize_with_headroom(pair_factor_, pairs.pair_count());
+    }
     resize_with_headroom(wall_gradient_,
                          (context.boundary ? context.boundary_neighbours.pair_count() : 0) +
                              simd_lanes);
@@ -127,14 +152,16 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
     // Local spans, not the members: loops that read members through `this`
     // stay scalar.
-    resize_with_headroom(pair_factor_, context.neighbours.pair_count());
-    const std::span<Float4> gradient = gradient_;
     const std::span<Real> pair_factor = pair_factor_;
+    const std::span<std::uint32_t> slice_index = slice_index_;
+    std::array<float*, D> slice_gradient;
+    for (int k = 0; k < D; ++k)
+        slice_gradient[k] = slice_gradient_[k].data();
     const std::span<Vec<D>> wall_gradient = wall_gradient_, wall_sum = wall_sum_;
+    // Chunks of whole slices: a slice is written by one thread.
+    static_assert(256 % slice_lanes == 0);
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
-        // The pairs' gradients, kept for the solves' iterations, then their
-        // sums (separate passes: each loop vectorises).
         const NeighbourList& pairs = context.neighbours;
         // Locals for what the loop reads (as in sum_over_pairs): through
         // references GCC 12 leaves this loop scalar.
@@ -144,39 +171,46 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         const Vec<D> x_i = position[i];
         const Real mass = params.mass;
         const Kernel local_kernel = kernel;
-        // With the sums of the rounded g_ij, which the iterations use.
-        Float4 sum_f{}, squares_f{};
+        // g_ij into its slice (lane i % slice_lanes of columns 0, 1, ...),
+        // with the sums of the rounded values, which the iterations use.
+        Real* factor = pair_factor.data();
         if constexpr (Kernel::smooth_at_origin) {
-            // g_ij = (m W'(r) / r) x_ij: the factor in a loop that
-            // vectorises (the square root and the kernel), then the vectors,
-            // whose stores into Float4 keep a loop scalar (measured: 20
-            // cycles a pair in one loop, 1 thread).
-            Real* factor = pair_factor.data();
+            // m W'(r) / r first, in a loop that vectorises (the square root
+            // and the kernel); the stores into the slice keep a loop scalar.
 #pragma omp simd
             for (std::size_t e = begin; e < end; ++e) {
                 const Vec<D> x_ij = x_i - position[index[e]];
                 factor[e] = mass * local_kernel.dW_over_r(std::sqrt(squared_length<D>(x_ij)));
             }
-            for (std::size_t e = begin; e < end; ++e) {
-                const Float4 g = float(factor[e]) * to_float4<D>(x_i - position[index[e]]);
-                gradient[e] = g;
-                sum_f += g;
-                squares_f += g * g;
-            }
-        } else {
-            for (std::size_t e = begin; e < end; ++e) {
-                const std::uint32_t j = index[e];
-                const Vec<D> x_ij = x_i - position[j];
-                const Real r = std::sqrt(squared_length<D>(x_ij));
-                const Float4 g =
-                    to_float4<D>(mass * pair_gradient(local_kernel, state, i, j, x_ij, r));
-                gradient[e] = g;
-                sum_f += g;
-                squares_f += g * g;
-            }
         }
-        const Vec<D> sum = to_vec<D>(sum_f);
-        const Real sum_squares = Real(squares_f[0]) + Real(squares_f[1]) + Real(squares_f[2]);
+        const std::size_t slice = i / slice_lanes, lane = i % slice_lanes;
+        std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
+        const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
+        Vec<D> sum(0);
+        Real sum_squares = 0;
+        for (std::size_t e = begin; e < end; ++e, at += slice_lanes) {
+            const std::uint32_t j = index[e];
+            const Vec<D> x_ij = x_i - position[j];
+            Vec<D> g;
+            if constexpr (Kernel::smooth_at_origin)
+                g = factor[e] * x_ij;
+            else
+                g = mass * pair_gradient(local_kernel, state, i, j, x_ij,
+                                         std::sqrt(squared_length<D>(x_ij)));
+            slice_index[at] = j;
+            for (int k = 0; k < D; ++k) {
+                slice_gradient[k][at] = float(g[k]);
+                g[k] = slice_gradient[k][at];
+            }
+            sum += g;
+            sum_squares += squared_length<D>(g);
+        }
+        // The row's padding: g = 0 (the index in cache, and valid).
+        for (; at < slice_end; at += slice_lanes) {
+            slice_index[at] = std::uint32_t(i);
+            for (int k = 0; k < D; ++k)
+                slice_gradient[k][at] = 0;
+        }
         Vec<D> walls_sum(0);
         if (context.boundary) {
             const auto xb = context.boundary->positions();
@@ -211,10 +245,9 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
 }
 
 template <int D>
-int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepContext<D>& context,
-                          State<D>& state) {
+SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target,
+                                         StepContext<D>& context, State<D>& state) {
     const std::size_t n = state.size();
-    const NeighbourList& pairs = context.neighbours;
     const PressureSolveSettings& settings = params.pressure_solve;
     const Real tolerance =
         (target == Target::density ? settings.tolerance : settings.divergence_tolerance) / 100;
@@ -263,7 +296,7 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
             stiffness_[i] = state.density[i] < rho0 ? 0 : scale * previous[i];
             stiffness_f_[i] = float(stiffness_[i]);
         }
-        correct_velocities(context, state);
+        correct_velocities(state);
         share_velocities();
         sum = stiffness_;
     } else {
@@ -279,51 +312,67 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
     int restarts = 0;
     int iterations = 0;
     for (;;) {
-        const std::span<const Float4> gradient = gradient_, velocity_f = velocity_f_;
         const std::span<const Vec<D>> wall_sum = wall_sum_;
         const std::span<float> stiffness_f = stiffness_f_;
+        const std::uint32_t* columns = slice_start_.data();
+        const std::uint32_t* slice_index = slice_index_.data();
+        std::array<const float*, D> slice_gradient, velocity_f;
+        for (int k = 0; k < D; ++k) {
+            slice_gradient[k] = slice_gradient_[k].data();
+            velocity_f[k] = velocity_f_[k].data();
+        }
         // The compression rate with the current velocities, and the source
         // each particle's stiffness answers: the predicted density error
         // (density solve) or the rate itself (divergence solve).
-#pragma omp parallel for schedule(dynamic, 256)
-        for (std::size_t i = 0; i < n; ++i) {
-            // A pair at a time here and in correct_velocities, its three
-            // components in one register: gathering v_j (s_j) of several
-            // pairs into wide registers costs more than it saves (measured:
-            // both solves 1.8-3x slower with AVX-512 gathers, AMD EPYC).
-            // sum_j g_ij . v_ij is the lanes' sum of sum_j g_ij * v_ij.
-            const Vec<D> v_i = state.velocity[i];
-            const Float4 vf_i = velocity_f[i];
-            const std::uint32_t* index = pairs.index.data();
-            const Float4 pair_terms =
-                sum_four_ways(pairs.start[i], pairs.start[i + 1], [&](std::uint32_t e) {
-                    return gradient[e] * (vf_i - velocity_f[index[e]]);
-                });
-            Real rate = wall_mirror * glm::dot(wall_sum[i], v_i) + Real(pair_terms[0]) +
-                        Real(pair_terms[1]) + Real(pair_terms[2]);
-            if (!wall_motion_.empty())
-                rate -= wall_mirror * wall_motion_[i];
-            const Real source =
-                target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
-            source_[i] = source;
-            // The residual of a pressure that must stay >= 0: compression
-            // anywhere, and expansion where there is pressure to give back.
-            residual_[i] = sum[i] > 0 ? std::abs(source) : std::max(source, Real(0));
-            // Relaxed, projected Jacobi. Relaxed: the plain Jacobi update
-            // (the factor ignores how neighbours respond) overshoots and,
-            // with the 20-40 neighbours of our kernels, diverges in a deep
-            // tank; half of it converges, as in IISPH (Ihmsen et al. 2014,
-            // omega = 0.5). Projected: the summed stiffness (a pressure)
-            // never goes below zero, so the fluid does not pull itself
-            // together, but an expanding particle gives back pressure it was
-            // given before, which the warm start would otherwise only ever
-            // add to. Computed here, in the same pass (one fewer over the
-            // particles and one fewer wait for the threads an iteration), and
-            // taken below unless the solve stops.
-            const Real updated = std::max(sum[i] + omega * source * factor_[i], Real(0));
-            stiffness_[i] = updated - sum[i];
-            stiffness_f[i] = float(stiffness_[i]);
-            next_sum_[i] = updated;
+#pragma omp parallel for schedule(dynamic, 32)
+        for (std::size_t slice = 0; slice < slice_count(n); ++slice) {
+            // sum_j g_ij . (v_i - v_j) for the slice's particles, one a lane,
+            // component by component.
+            const std::size_t first = slice * slice_lanes;
+            std::array<Lanes, D> v_i, pair_sum;
+            for (int k = 0; k < D; ++k) {
+                load_lanes(v_i[k], velocity_f[k] + first);
+                pair_sum[k] = Lanes{};
+            }
+            for (std::size_t at = std::size_t(columns[slice]) * slice_lanes,
+                             end = std::size_t(columns[slice + 1]) * slice_lanes;
+                 at < end; at += slice_lanes)
+                for (int k = 0; k < D; ++k) {
+                    Lanes g, v_j;
+                    load_lanes(g, slice_gradient[k] + at);
+                    gather_lanes(v_j, velocity_f[k], slice_index + at);
+                    pair_sum[k] += g * (v_i[k] - v_j);
+                }
+            Lanes pair_rate = pair_sum[0];
+            for (int k = 1; k < D; ++k)
+                pair_rate += pair_sum[k];
+            for (std::size_t i = first; i < std::min(n, first + slice_lanes); ++i) {
+                const Real rate_of_pairs = pair_rate[i - first];
+                Real rate = wall_mirror * glm::dot(wall_sum[i], state.velocity[i]) + rate_of_pairs;
+                if (!wall_motion_.empty())
+                    rate -= wall_mirror * wall_motion_[i];
+                const Real source =
+                    target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
+                source_[i] = source;
+                // The residual of a pressure that must stay >= 0: compression
+                // anywhere, and expansion where there is pressure to give back.
+                residual_[i] = sum[i] > 0 ? std::abs(source) : std::max(source, Real(0));
+                // Relaxed, projected Jacobi. Relaxed: the plain Jacobi update
+                // (the factor ignores how neighbours respond) overshoots and,
+                // with the 20-40 neighbours of our kernels, diverges in a deep
+                // tank; half of it converges, as in IISPH (Ihmsen et al. 2014,
+                // omega = 0.5). Projected: the summed stiffness (a pressure)
+                // never goes below zero, so the fluid does not pull itself
+                // together, but an expanding particle gives back pressure it was
+                // given before, which the warm start would otherwise only ever
+                // add to. Computed here, in the same pass (one fewer over the
+                // particles and one fewer wait for the threads an iteration), and
+                // taken below unless the solve stops.
+                const Real updated = std::max(sum[i] + omega * source * factor_[i], Real(0));
+                stiffness_[i] = updated - sum[i];
+                stiffness_f[i] = float(stiffness_[i]);
+                next_sum_[i] = updated;
+            }
         }
         // Summed in particle order, not by an OpenMP reduction, so that the
         // iteration count, and so every bit, is the same for any thread
@@ -357,7 +406,7 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
         if (context.halo)
             for (std::size_t i = 0; i < n; ++i)
                 stiffness_f_[i] = float(stiffness_[i]);
-        correct_velocities(context, state);
+        correct_velocities(state);
         share_velocities();
         ++iterations;
     }
@@ -372,24 +421,46 @@ int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Target target, StepC
 // layer, leaves the bottom layer at twice the hydrostatic pressure).
 // Gather: each particle corrects only its own velocity.
 template <int D>
-void DfsphSolver<D>::correct_velocities(const StepContext<D>& context, State<D>& state) {
+SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
     const std::size_t n = state.size();
-    const NeighbourList& pairs = context.neighbours;
-    const std::span<const Float4> gradient = gradient_;
-    const std::span<Float4> velocity_f = velocity_f_;
     const std::span<const Vec<D>> wall_sum = wall_sum_;
     const std::span<const Real> stiffness = stiffness_;
-    const std::span<const float> stiffness_f = stiffness_f_;
-    const std::uint32_t* index = pairs.index.data();
-#pragma omp parallel for schedule(dynamic, 256)
-    for (std::size_t i = 0; i < n; ++i) {
-        const float sf_i = stiffness_f[i];
-        const Float4 pair_terms =
-            sum_four_ways(pairs.start[i], pairs.start[i + 1], [&](std::uint32_t e) {
-                return (sf_i + stiffness_f[index[e]]) * gradient[e];
-            });
-        state.velocity[i] -= wall_mirror * stiffness[i] * wall_sum[i] + to_vec<D>(pair_terms);
-        velocity_f[i] = to_float4<D>(state.velocity[i]);
+    const float* stiffness_f = stiffness_f_.data();
+    const std::uint32_t* columns = slice_start_.data();
+    const std::uint32_t* slice_index = slice_index_.data();
+    std::array<const float*, D> slice_gradient;
+    std::array<float*, D> velocity_f;
+    for (int k = 0; k < D; ++k) {
+        slice_gradient[k] = slice_gradient_[k].data();
+        velocity_f[k] = velocity_f_[k].data();
+    }
+#pragma omp parallel for schedule(dynamic, 32)
+    for (std::size_t slice = 0; slice < slice_count(n); ++slice) {
+        // sum_j (s_i + s_j) g_ij for the slice's particles, one a lane.
+        const std::size_t first = slice * slice_lanes;
+        Lanes s_i;
+        load_lanes(s_i, stiffness_f + first);
+        std::array<Lanes, D> pair_sum{};
+        for (std::size_t at = std::size_t(columns[slice]) * slice_lanes,
+                         end = std::size_t(columns[slice + 1]) * slice_lanes;
+             at < end; at += slice_lanes) {
+            Lanes s_j;
+            gather_lanes(s_j, stiffness_f, slice_index + at);
+            const Lanes s_ij = s_i + s_j;
+            for (int k = 0; k < D; ++k) {
+                Lanes g;
+                load_lanes(g, slice_gradient[k] + at);
+                pair_sum[k] += s_ij * g;
+            }
+        }
+        for (std::size_t i = first; i < std::min(n, first + slice_lanes); ++i) {
+            Vec<D> dv = wall_mirror * stiffness[i] * wall_sum[i];
+            for (int k = 0; k < D; ++k)
+                dv[k] += pair_sum[k][i - first];
+            state.velocity[i] -= dv;
+            for (int k = 0; k < D; ++k)
+                velocity_f[k][i] = float(state.velocity[i][k]);
+        }
     }
 }
 

@@ -25,9 +25,10 @@
 
 namespace sph {
 
-// (x, y, z, 0) in four floats, one SSE register (GCC's vector extension;
-// wider registers gain nothing: a pair's terms are gathered one at a time).
-using Float4 = float __attribute__((vector_size(16)));
+// The iterations' pair loops take slice_lanes particles at a time, one to
+// a lane of a register of floats (GCC's vector extension).
+inline constexpr std::size_t slice_lanes = 8;
+using Lanes = float __attribute__((vector_size(4 * slice_lanes)));
 
 // Incompressible: no sound condition on the step; its own integration scheme.
 // Monaghan's artificial viscosity on by default, as in wcsph and with its
@@ -72,7 +73,7 @@ class DfsphSolver final : public Solver<D> {
                  State<D>& state);
     int solve(const Params<D>& params, Real dt, Target target, StepContext<D>& context,
               State<D>& state);
-    void correct_velocities(const StepContext<D>& context, State<D>& state);
+    void correct_velocities(State<D>& state);
     // state.acceleration += the walls' hydrostatic pressure (solver.wall_pressure).
     void add_wall_weight(const Params<D>& params, const StepContext<D>& context,
                          State<D>& state) const;
@@ -97,17 +98,25 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Real> next_sum_;                 // the summed s_i after this iteration
     std::vector<Vec<D>> velocity_at_start_;      // to restart a diverging solve
     std::vector<Vec<D>> velocity_at_step_start_; // to redo a step in halves
-    // The iterations' pair loops work in floats, four to a register: a
-    // pair's g_ij and its neighbour's v_j are one load each, so a pair
-    // costs three loads (its index too) instead of seven, which bounded the
-    // loops (measured: 3.3 cycles a pair, 1 thread). Their rounding (1e-7)
-    // is far below the solves' tolerances; both passes read the same g_ij,
-    // so the operator stays symmetric. Per-particle sums and state are in
-    // double.
-    std::vector<Float4> gradient_;   // g_ij = m grad W_ij per fluid pair (neighbour list order)
-    std::vector<Real> pair_factor_;  // m W'(r) / r per fluid pair, on the way to g_ij
-    std::vector<Float4> velocity_f_; // v_i, rounded from state.velocity after each change
-    std::vector<float> stiffness_f_; // s_i of this iteration, rounded
+    // The fluid pairs as the iterations read them: in slices of
+    // slice_lanes consecutive particles (SELL-C, Kreutzer et al. 2014,
+    // "A unified sparse matrix data format for efficient general sparse
+    // matrix-vector multiplication on modern processors with wide SIMD
+    // units"), column c of a slice holding each particle's c-th pair, the
+    // rows shorter than the slice's longest padded with g = 0. A loop over
+    // a slice's columns then sums all its particles' rows at once, lane by
+    // lane: no sum across a register, no loop ending at each row (a row of
+    // about 30 pairs ended in a mispredicted branch), and a column's g_ij
+    // are whole-register loads; only v_j (s_j) are gathered. In floats: the
+    // rounding (1e-7) is far below the solves' tolerances, and both passes
+    // read the same g_ij, so the operator stays symmetric. Per-particle
+    // sums and the state stay in double.
+    std::vector<std::uint32_t> slice_start_;           // first column of each slice, then the end
+    std::vector<std::uint32_t> slice_index_;           // j, per column and lane
+    std::array<std::vector<float>, D> slice_gradient_; // g_ij = m grad W_ij, by component
+    std::vector<Real> pair_factor_;                    // m W'(r) / r per pair, on the way
+    std::array<std::vector<float>, D> velocity_f_;     // v_i, rounded after each change
+    std::vector<float> stiffness_f_;                   // s_i of this iteration, rounded
     void round_velocities(const State<D>& state);
     std::vector<Vec<D>> wall_gradient_; // rho0 V_b grad W_ib per wall pair
     std::vector<Real> wall_motion_;     // sum_b w_ib . v_b; empty when no wall moves

@@ -74,7 +74,7 @@ SPHCLIP_CLONED void
 accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourList& neighbours,
                  const BoundaryParticles<D>* boundary, const NeighbourList& boundary_neighbours,
                  const PairViscosities& viscosities, const std::vector<Real>& pressure_term,
-                 State<D>& state, const Real* wall_pressure_term) {
+                 State<D>& state, const Real* wall_pressure_term, bool fluid_pairs = true) {
     const std::size_t n = state.size();
     const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
     const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
@@ -82,7 +82,9 @@ accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourL
     for (std::size_t i = 0; i < n; ++i) {
         const Real pi_over_rho2 = pressure_term[i];
         const Real viscous_scale = laminar ? morris.two_mu / state.density[i] : 0;
-        Vec<D> a = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
+        Vec<D> a(0);
+        if (fluid_pairs)
+            a = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
             const Vec<D> x_ij = state.position[i] - state.position[j];
             const Real r2 = squared_length<D>(x_ij);
             const Real r = std::sqrt(r2);
@@ -181,18 +183,20 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
 // whose pressure comes from its solves. One pass over the pairs instead of
 // one for each (the pairs' gathers, r and the kernel's derivative shared).
 // Overwrites state.acceleration; `zero_terms` is the caller's scratch.
+// With fluid_pairs false, the walls' terms only (dfsph sums the fluid
+// pairs' in its own layout).
 template <int D, class Kernel>
 void compute_pair_viscosities(const Params<D>& params, const Kernel& kernel,
                               const NeighbourList& neighbours, const BoundaryParticles<D>* boundary,
                               const NeighbourList& boundary_neighbours,
                               const PairViscosities& viscosities, std::vector<Real>& zero_terms,
-                              State<D>& state) {
+                              State<D>& state, bool fluid_pairs = true) {
     resize_with_headroom(zero_terms, state.size());
     std::fill(zero_terms.begin(), zero_terms.end(), Real(0));
     viscosities.dispatch([&](auto artificial, auto laminar) {
         detail::accelerate_pairs<decltype(artificial)::value, decltype(laminar)::value, false,
                                  false>(params, kernel, neighbours, boundary, boundary_neighbours,
-                                        viscosities, zero_terms, state, nullptr);
+                                        viscosities, zero_terms, state, nullptr, fluid_pairs);
     });
 }
 

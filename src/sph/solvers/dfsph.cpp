@@ -158,6 +158,15 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     for (int k = 0; k < D; ++k)
         slice_gradient[k] = slice_gradient_[k].data();
     const std::span<Vec<D>> wall_gradient = wall_gradient_, wall_sum = wall_sum_;
+    resize_with_headroom(density_f_, slices * slice_lanes);
+    float* density_f = density_f_.data();
+    std::array<float*, D> position_f;
+    for (int k = 0; k < D; ++k) {
+        resize_with_headroom(position_f_[k], slices * slice_lanes);
+        position_f[k] = position_f_[k].data();
+    }
+    // The same on every rank, so that a run's bits do not depend on the ranks.
+    const Vec<D> origin = params.domain.min;
     // Chunks of whole slices: a slice is written by one thread.
     static_assert(256 % slice_lanes == 0);
 #pragma omp parallel for schedule(dynamic, 256)
@@ -183,6 +192,9 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                 factor[e] = mass * local_kernel.dW_over_r(std::sqrt(squared_length<D>(x_ij)));
             }
         }
+        for (int k = 0; k < D; ++k)
+            position_f[k][i] = float(x_i[k] - origin[k]);
+        density_f[i] = float(state.density[i]);
         const std::size_t slice = i / slice_lanes, lane = i % slice_lanes;
         std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
         const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
@@ -464,6 +476,75 @@ SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
     }
 }
 
+// Monaghan's and Morris's viscosities between fluid particles, as in
+// pressure_acceleration.hpp (with no pressure), over the slices:
+//   a_i += -sum_j Pi_ij g_ij + (2 mu / rho_i) sum_j (x_ij . g_ij) / (rho_j (r^2 + eps)) v_ij
+// with g_ij = m grad W_ij as the solves use it, in floats: positions as
+// offsets from the domain's corner (a domain far from the origin loses nothing),
+// the velocities the divergence solve left.
+template <int D>
+template <bool artificial, bool laminar>
+SPHCLIP_CLONED void DfsphSolver<D>::add_fluid_viscosities(const MonaghanTerm<float>& Pi,
+                                                          const MorrisViscosity::Single& morris,
+                                                          State<D>& state) const {
+    const std::size_t n = state.size();
+    const std::uint32_t* columns = slice_start_.data();
+    const std::uint32_t* slice_index = slice_index_.data();
+    const float* density_f = density_f_.data();
+    std::array<const float*, D> slice_gradient, velocity_f, position_f;
+    for (int k = 0; k < D; ++k) {
+        slice_gradient[k] = slice_gradient_[k].data();
+        velocity_f[k] = velocity_f_[k].data();
+        position_f[k] = position_f_[k].data();
+    }
+#pragma omp parallel for schedule(dynamic, 32)
+    for (std::size_t slice = 0; slice < slice_count(n); ++slice) {
+        const std::size_t first = slice * slice_lanes;
+        std::array<Lanes, D> x_i, v_i, along_g{}, along_v{};
+        Lanes rho_i;
+        for (int k = 0; k < D; ++k) {
+            load_lanes(x_i[k], position_f[k] + first);
+            load_lanes(v_i[k], velocity_f[k] + first);
+        }
+        load_lanes(rho_i, density_f + first);
+        for (std::size_t at = std::size_t(columns[slice]) * slice_lanes,
+                         end = std::size_t(columns[slice + 1]) * slice_lanes;
+             at < end; at += slice_lanes) {
+            std::array<Lanes, D> x_ij, v_ij, g;
+            Lanes r2{}, v_dot_x{}, x_dot_g{}, rho_j;
+            for (int k = 0; k < D; ++k) {
+                Lanes other;
+                gather_lanes(other, position_f[k], slice_index + at);
+                x_ij[k] = x_i[k] - other;
+                gather_lanes(other, velocity_f[k], slice_index + at);
+                v_ij[k] = v_i[k] - other;
+                load_lanes(g[k], slice_gradient[k] + at);
+                r2 += x_ij[k] * x_ij[k];
+                v_dot_x += v_ij[k] * x_ij[k];
+                x_dot_g += x_ij[k] * g[k];
+            }
+            gather_lanes(rho_j, density_f, slice_index + at);
+            if constexpr (artificial) {
+                const Lanes Pi_ij = Pi(v_dot_x, rho_i + rho_j, r2);
+                for (int k = 0; k < D; ++k)
+                    along_g[k] += Pi_ij * g[k];
+            }
+            if constexpr (laminar) {
+                // The padding's g = 0 makes its x . g 0 (and r^2 + eps > 0).
+                const Lanes weight = x_dot_g / (rho_j * (r2 + morris.eps));
+                for (int k = 0; k < D; ++k)
+                    along_v[k] += weight * v_ij[k];
+            }
+        }
+        for (std::size_t i = first; i < std::min(n, first + slice_lanes); ++i) {
+            const Real viscous_scale = laminar ? morris.two_mu / state.density[i] : 0;
+            for (int k = 0; k < D; ++k)
+                state.acceleration[i][k] +=
+                    -Real(along_g[k][i - first]) + viscous_scale * Real(along_v[k][i - first]);
+        }
+    }
+}
+
 // The walls' pressure with its hydrostatic rise (solver.wall_pressure):
 // p_b = max(p_i + rho_i g . (x_b - x_i), 0), Adami et al. 2012's eq. 27
 // taken pair by pair: the fluid's hydrostatic pressure continued into the
@@ -556,11 +637,18 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
             artificial ? artificial->pair_viscosity(params) : MonaghanViscosity{};
         const MorrisViscosity morris =
             laminar ? laminar->pair_viscosity(params) : MorrisViscosity{};
+        const PairViscosities viscosities{artificial ? &monaghan : nullptr,
+                                          laminar ? &morris : nullptr};
+        // The walls' terms over their pairs, then the fluid pairs' in the
+        // slices, in floats.
         with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
-            compute_pair_viscosities(
-                params, kernel, context.neighbours, context.boundary, context.boundary_neighbours,
-                {artificial ? &monaghan : nullptr, laminar ? &morris : nullptr}, zero_terms_,
-                state);
+            compute_pair_viscosities(params, kernel, context.neighbours, context.boundary,
+                                     context.boundary_neighbours, viscosities, zero_terms_, state,
+                                     /*fluid_pairs=*/false);
+        });
+        viscosities.dispatch([&](auto has_artificial, auto has_laminar) {
+            add_fluid_viscosities<decltype(has_artificial)::value, decltype(has_laminar)::value>(
+                monaghan.single(), morris.single(), state);
         });
     } else {
         std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));

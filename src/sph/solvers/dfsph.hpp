@@ -18,6 +18,8 @@
 // continuity equation (solver.density), which has no deficit at a free
 // surface.
 
+#include "sph/effects/artificial_viscosity.hpp"
+#include "sph/effects/laminar_viscosity.hpp"
 #include "sph/solvers/solver.hpp"
 
 #include <array>
@@ -117,6 +119,11 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Real> pair_factor_;                    // m W'(r) / r per pair, on the way
     std::array<std::vector<float>, D> velocity_f_;     // v_i, rounded after each change
     std::vector<float> stiffness_f_;                   // s_i of this iteration, rounded
+    std::array<std::vector<float>, D> position_f_;     // x_i - x_0, for the viscosities
+    std::vector<float> density_f_;                     // rho_i, for the viscosities
+    template <bool artificial, bool laminar>
+    void add_fluid_viscosities(const MonaghanTerm<float>& Pi, const MorrisViscosity::Single& morris,
+                               State<D>& state) const;
     void round_velocities(const State<D>& state);
     std::vector<Vec<D>> wall_gradient_; // rho0 V_b grad W_ib per wall pair
     std::vector<Real> wall_motion_;     // sum_b w_ib . v_b; empty when no wall moves

@@ -85,31 +85,32 @@ accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourL
         Vec<D> a(0);
         if (fluid_pairs)
             a = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
-            const Vec<D> x_ij = state.position[i] - state.position[j];
-            const Real r2 = squared_length<D>(x_ij);
-            const Real r = std::sqrt(r2);
-            const Vec<D> v_ij = state.velocity[i] - state.velocity[j];
-            Real factor = pi_over_rho2 + pressure_term[j];
-            if constexpr (artificial)
-                factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
-            if constexpr (Kernel::smooth_at_origin) {
-                // grad W = (dW/dr / r) x: one factor for both terms.
-                const Real f = kernel.dW_over_r(r);
-                Vec<D> term = -(params.mass * factor * f) * x_ij;
-                if constexpr (laminar)
-                    term += (viscous_scale *
-                             morris.fluid_from_factor(params.mass, state.density[j], r2, f)) *
-                            v_ij;
-                return term;
-            } else {
-                Vec<D> term = -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
-                if constexpr (laminar)
-                    term += (viscous_scale *
-                             morris.fluid(kernel, params.mass, state.density[j], r, r2)) *
-                            v_ij;
-                return term;
-            }
-        });
+                const Vec<D> x_ij = state.position[i] - state.position[j];
+                const Real r2 = squared_length<D>(x_ij);
+                const Real r = std::sqrt(r2);
+                const Vec<D> v_ij = state.velocity[i] - state.velocity[j];
+                Real factor = pi_over_rho2 + pressure_term[j];
+                if constexpr (artificial)
+                    factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
+                if constexpr (Kernel::smooth_at_origin) {
+                    // grad W = (dW/dr / r) x: one factor for both terms.
+                    const Real f = kernel.dW_over_r(r);
+                    Vec<D> term = -(params.mass * factor * f) * x_ij;
+                    if constexpr (laminar)
+                        term += (viscous_scale *
+                                 morris.fluid_from_factor(params.mass, state.density[j], r2, f)) *
+                                v_ij;
+                    return term;
+                } else {
+                    Vec<D> term =
+                        -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
+                    if constexpr (laminar)
+                        term += (viscous_scale *
+                                 morris.fluid(kernel, params.mass, state.density[j], r, r2)) *
+                                v_ij;
+                    return term;
+                }
+            });
         if (boundary) {
             const auto xb = boundary->positions();
             const auto volume = boundary->volumes();

@@ -69,8 +69,8 @@ struct MonaghanTerm {
     // The same for each lane of a register of T (GCC's vector extension; a
     // reference: a wide vector by value changes the ABI without AVX).
     template <class Lanes>
-        requires(!std::floating_point<Lanes>)
-    Lanes operator()(const Lanes& rate, const Lanes& density_sum, const Lanes& r2) const {
+    requires(!std::floating_point<Lanes>) Lanes
+    operator()(const Lanes& rate, const Lanes& density_sum, const Lanes& r2) const {
         const Lanes v_dot_x = rate < 0 ? rate : Lanes{};
         return -nu_scale * v_dot_x / (density_sum * (r2 + eps));
     }

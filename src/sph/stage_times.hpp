@@ -29,13 +29,13 @@ enum class Stage : std::uint8_t {
     // The step (Simulation::step_by, the solvers' step).
     neighbour_search,    // the fluid's neighbours
     boundary_neighbours, // each fluid particle's boundary particles
-    density,
-    pressure,         // explicit solvers: the equation of state, the pressure force
-    density_rate,     // wcsph's carried density: its rate and delta-SPH's diffusion
-    wall_pressure,    // wcsph: the walls' pressure extrapolated from the fluid
-    viscosities,      // dfsph: Monaghan's and Morris's viscosities in one pass
-    divergence_solve, // dfsph
-    pressure_solve,   // dfsph
+    density,             // dfsph: with the pairs' gradients and the solves' factors, in one pass
+    pressure,            // explicit solvers: the equation of state, the pressure force
+    density_rate,        // wcsph's carried density: its rate and delta-SPH's diffusion
+    wall_pressure,       // wcsph: the walls' pressure extrapolated from the fluid
+    viscosities,         // dfsph: Monaghan's and Morris's viscosities in one pass
+    divergence_solve,    // dfsph
+    pressure_solve,      // dfsph
     integration,
     time_step, // the stability conditions
     watchdog,  // the checks after a step, the state saved for a retry

@@ -101,14 +101,15 @@ template <class Kernel>
 SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel,
                                             StepContext<D>& context, State<D>& state) {
     const std::size_t n = state.size();
-    if (params.density_model == DensityModel::carried)
-        find_neighbours_and_carried_density(params, kernel, context, state);
+    // A summed density is summed below, in the pass that makes the pairs'
+    // gradients (its r and the loads of x_j shared), timed as the density.
+    const bool summed = params.density_model != DensityModel::carried;
+    if (summed)
+        context.find_neighbours(state.position, params.h);
     else
-        find_neighbours_and_density(params, kernel, context, state);
-    // Over ranks: the halo's densities from their owners (the viscosities read them).
-    context.share_halo_densities(state);
+        find_neighbours_and_carried_density(params, kernel, context, state);
 
-    auto timed = context.time(Stage::pressure_solve);
+    std::optional<StageTimes::Scope> timed(std::in_place, context.stages, Stage::density);
     factor_.resize(n);
     stiffness_.resize(n);
     // Whole slices: the lanes past the last particle read 0.
@@ -167,6 +168,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     }
     // The same on every rank, so that a run's bits do not depend on the ranks.
     const Vec<D> origin = params.domain.min;
+    const Real self = kernel_value_squared(kernel, Real(0));
     // Chunks of whole slices: a slice is written by one thread.
     static_assert(256 % slice_lanes == 0);
 #pragma omp parallel for schedule(dynamic, 256)
@@ -183,18 +185,26 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         // g_ij into its slice (lane i % slice_lanes of columns 0, 1, ...),
         // with the sums of the rounded values, which the iterations use.
         Real* factor = pair_factor.data();
+        // sum_j W_ij, for a summed density (Akinci et al. 2012, eq. 6, with
+        // the walls' share below): rho_i = m (W(0) + sum_j W_ij) + rho0 sum_b V_b W_ib.
+        Real kernel_sum = 0;
         if constexpr (Kernel::smooth_at_origin) {
             // m W'(r) / r first, in a loop that vectorises (the square root
             // and the kernel); the stores into the slice keep a loop scalar.
-#pragma omp simd
+#pragma omp simd reduction(+ : kernel_sum)
             for (std::size_t e = begin; e < end; ++e) {
                 const Vec<D> x_ij = x_i - position[index[e]];
-                factor[e] = mass * local_kernel.dW_over_r(std::sqrt(squared_length<D>(x_ij)));
+                const Real r2 = squared_length<D>(x_ij);
+                factor[e] = mass * local_kernel.dW_over_r(std::sqrt(r2));
+                kernel_sum += kernel_value_squared(local_kernel, r2);
             }
+        } else {
+            for (std::size_t e = begin; e < end; ++e)
+                kernel_sum +=
+                    kernel_value_squared(local_kernel, squared_length<D>(x_i - position[index[e]]));
         }
         for (int k = 0; k < D; ++k)
             position_f[k][i] = float(x_i[k] - origin[k]);
-        density_f[i] = float(state.density[i]);
         const std::size_t slice = i / slice_lanes, lane = i % slice_lanes;
         std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
         const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
@@ -224,6 +234,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                 slice_gradient[k][at] = 0;
         }
         Vec<D> walls_sum(0);
+        Real wall_kernel_sum = 0; // sum_b V_b W_ib
         if (context.boundary) {
             const auto xb = context.boundary->positions();
             const auto volume = context.boundary->volumes();
@@ -232,14 +243,18 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             const std::size_t wall_begin = walls.start[i], wall_end = walls.start[i + 1];
             const std::uint32_t* wall_index = walls.index.data();
             const Real rho0 = params.rest_density;
-#pragma omp simd
+#pragma omp simd reduction(+ : wall_kernel_sum)
             for (std::size_t e = wall_begin; e < wall_end; ++e) {
                 const std::uint32_t b = wall_index[e];
                 const Vec<D> x_ib = x_i - xb[b];
-                const Real r = std::sqrt(squared_length<D>(x_ib));
-                const Vec<D> w = rho0 * volume[b] * boundary_gradient(local_kernel, x_ib, r);
-                for (int k = 0; k < D; ++k) // as above
+                const Real r2 = squared_length<D>(x_ib);
+                const Vec<D> w =
+                    rho0 * volume[b] * boundary_gradient(local_kernel, x_ib, std::sqrt(r2));
+                // Component by component: a whole vector assigned is a copy
+                // through memory that keeps the loop scalar (GCC 12).
+                for (int k = 0; k < D; ++k)
                     wall_gradient[e][k] = w[k];
+                wall_kernel_sum += volume[b] * kernel_value_squared(local_kernel, r2);
             }
             walls_sum = sum_over_pairs(
                 walls, i, [&](std::size_t e, std::uint32_t) { return wall_gradient[e]; });
@@ -253,6 +268,16 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         const Vec<D> G = sum + wall_mirror * walls_sum;
         const Real S = glm::dot(G, G) + sum_squares;
         factor_[i] = S > tiny ? 1 / S : 0;
+        if (summed)
+            state.density[i] = mass * (self + kernel_sum) + params.rest_density * wall_kernel_sum;
+        density_f[i] = float(state.density[i]);
+    }
+    timed.reset();
+    // Over ranks: the halo's densities from their owners (the viscosities read them).
+    if (context.halo) {
+        context.share_halo_densities(state);
+        for (std::size_t i = 0; i < n; ++i)
+            density_f[i] = float(state.density[i]);
     }
 }
 

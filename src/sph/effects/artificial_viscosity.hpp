@@ -66,13 +66,13 @@ struct MonaghanTerm {
                                                // keeps the loop scalar
         return -nu_scale * v_dot_x / (density_sum * (r2 + eps));
     }
-    // The same for each lane of a register of T (GCC's vector extension; a
-    // reference: a wide vector by value changes the ABI without AVX).
+    // The same for each lane of a register (GCC's vector extension), into
+    // `Pi`: a wide vector returned by value changes the ABI without AVX.
     template <class Lanes>
-    requires(!std::floating_point<Lanes>) Lanes
-    operator()(const Lanes& rate, const Lanes& density_sum, const Lanes& r2) const {
+    requires(!std::floating_point<Lanes>) void
+    operator()(const Lanes& rate, const Lanes& density_sum, const Lanes& r2, Lanes& Pi) const {
         const Lanes v_dot_x = rate < 0 ? rate : Lanes{};
-        return -nu_scale * v_dot_x / (density_sum * (r2 + eps));
+        Pi = -nu_scale * v_dot_x / (density_sum * (r2 + eps));
     }
     // The float term of the single-precision passes (sph/single_precision/).
     MonaghanTerm<float> single() const { return {float(nu_scale), float(eps)}; }

@@ -550,7 +550,8 @@ SPHCLIP_CLONED void DfsphSolver<D>::add_fluid_viscosities(const MonaghanTerm<flo
             }
             gather_lanes(rho_j, density_f, slice_index + at);
             if constexpr (artificial) {
-                const Lanes Pi_ij = Pi(v_dot_x, rho_i + rho_j, r2);
+                Lanes Pi_ij;
+                Pi(v_dot_x, rho_i + rho_j, r2, Pi_ij);
                 for (int k = 0; k < D; ++k)
                     along_g[k] += Pi_ij * g[k];
             }

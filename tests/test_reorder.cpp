@@ -306,3 +306,17 @@ TEST_CASE("a cell order is the same whatever the threads that sort", "[reorder]"
     CHECK(inner_order == order);
     CHECK(inner_starts == starts);
 }
+
+TEST_CASE("solver.reorder_every: each solver's default without the key, the key's value with it",
+          "[reorder]") {
+    const auto every = [](const std::vector<Override>& o) {
+        return make_params<2>(default_scene(o), derive(default_scene(o))).reorder_every;
+    };
+    // dfsph builds neighbour lists each step, cheaper from arrays in cell
+    // order (docs/benchmarks.md, "The pairs in slices").
+    CHECK(every({{"solver.name", "dfsph"}}) == 1);
+    CHECK(every({{"solver.name", "wcsph"}}) == 20);
+    CHECK(every({{"solver.name", "seed"}}) == 20);
+    CHECK(every({{"solver.name", "dfsph"}, {"solver.reorder_every", "7"}}) == 7);
+    CHECK(every({{"solver.name", "wcsph"}, {"solver.reorder_every", "0"}}) == 0);
+}

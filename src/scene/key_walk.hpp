@@ -62,6 +62,10 @@ void read_key(FieldReader& r, const std::string& prefix, const Key<S>& key, cons
                 r.record(path, "integer", key.unit, shown(std::to_string(fallback.*field)),
                          key.doc);
                 out.*field = v ? r.checked_integer(path, *v, key.min, key.max) : fallback.*field;
+            } else if constexpr (std::is_same_v<F, std::optional<int> S::*>) {
+                r.record(path, "integer or null", key.unit, key.absent, key.doc);
+                out.*field = v ? std::optional(r.checked_integer(path, *v, key.min, key.max))
+                               : fallback.*field;
             } else if constexpr (std::is_same_v<F, bool S::*>) {
                 r.record(path, "true or false", key.unit, fallback.*field ? "true" : "false",
                          key.doc);

@@ -74,7 +74,8 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.watchdog = {scene.watchdog.retries, scene.watchdog.max_density_ratio,
                   scene.watchdog.max_displacement, derived.max_speed,
                   !scene.watchdog.max_speed.has_value()};
-    p.reorder_every = scene.solver.reorder_every;
+    p.reorder_every =
+        scene.solver.reorder_every.value_or(solver_capabilities(scene.solver.name).reorder_every);
     p.rebalance_above = scene.solver.rebalance_above;
     p.precision = derived.precision;
     p.pair_terms = derived.pair_terms;

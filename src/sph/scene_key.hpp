@@ -35,9 +35,10 @@ struct EnumField {
 // Key::choices; an optional one is free text.
 template <class S>
 using KeyField =
-    std::variant<double S::*, std::optional<double> S::*, int S::*, bool S::*, std::string S::*,
-                 std::optional<std::string> S::*, Vec3 S::*, std::optional<Vec3> S::*,
-                 std::array<int, 2> S::*, std::optional<std::array<double, 2>> S::*, EnumField<S>>;
+    std::variant<double S::*, std::optional<double> S::*, int S::*, std::optional<int> S::*,
+                 bool S::*, std::string S::*, std::optional<std::string> S::*, Vec3 S::*,
+                 std::optional<Vec3> S::*, std::array<int, 2> S::*,
+                 std::optional<std::array<double, 2>> S::*, EnumField<S>>;
 
 template <class S>
 struct Key {

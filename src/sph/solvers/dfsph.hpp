@@ -42,7 +42,8 @@ inline constexpr SolverCapabilities dfsph_capabilities{.name = "dfsph",
                                                        .kind = SolverKind::dfsph,
                                                        .carries_sound = false,
                                                        .supports_verlet = false,
-                                                       .default_artificial_viscosity = true};
+                                                       .default_artificial_viscosity = true,
+                                                       .reorder_every = 1};
 
 template <int D>
 class DfsphSolver final : public Solver<D> {

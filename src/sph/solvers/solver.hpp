@@ -235,6 +235,9 @@ struct SolverCapabilities {
     // solver.artificial_viscosity applies without an effects.artificial_viscosity key.
     bool default_artificial_viscosity = false;
     ViscosityModel viscosity_model = ViscosityModel::morris; // effects.viscosity's default model
+    // solver.reorder_every without the key (chosen on the flows: docs/benchmarks.md,
+    // "The pairs in slices").
+    int reorder_every = 20;
 };
 
 // Names accepted by make_solver (`solver.name`), in the order docs/scene-keys.md lists them.

@@ -31,8 +31,9 @@ struct SolverSettings {
     double warm_start_fraction = PressureSolveSettings{}.warm_start_fraction;   // dfsph
     // sorted_grid | hash (the seed's) | all_pairs
     NeighbourSearchKind neighbour_search = NeighbourSearchKind::sorted_grid;
-    // Steps between spatial sorts of the particle arrays by cell; 0: never.
-    int reorder_every = 20;
+    // Steps between spatial sorts of the particle arrays by cell; 0: never;
+    // none: the solver's default (SolverCapabilities::reorder_every).
+    std::optional<int> reorder_every;
     double rebalance_above = 1.1;
     // The arithmetic of wcsph's density and pressure passes
     // (sph/single_precision/cell_passes.hpp); none: auto.

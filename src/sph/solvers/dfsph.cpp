@@ -188,15 +188,25 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         // sum_j W_ij, for a summed density (Akinci et al. 2012, eq. 6, with
         // the walls' share below): rho_i = m (W(0) + sum_j W_ij) + rho0 sum_b V_b W_ib.
         Real kernel_sum = 0;
+        // The sums of the row's g_ij for the factor S_i (in double, before
+        // their rounding to floats: a diagonal preconditioner, which that
+        // rounding does not change to speak of).
+        Real sum_x = 0, sum_y = 0, sum_z = 0, sum_squares = 0;
         if constexpr (Kernel::smooth_at_origin) {
             // m W'(r) / r first, in a loop that vectorises (the square root
             // and the kernel); the stores into the slice keep a loop scalar.
-#pragma omp simd reduction(+ : kernel_sum)
+#pragma omp simd reduction(+ : kernel_sum, sum_x, sum_y, sum_z, sum_squares)
             for (std::size_t e = begin; e < end; ++e) {
                 const Vec<D> x_ij = x_i - position[index[e]];
                 const Real r2 = squared_length<D>(x_ij);
-                factor[e] = mass * local_kernel.dW_over_r(std::sqrt(r2));
+                const Real f = mass * local_kernel.dW_over_r(std::sqrt(r2));
+                factor[e] = f;
                 kernel_sum += kernel_value_squared(local_kernel, r2);
+                sum_x += f * x_ij[0];
+                sum_y += f * x_ij[1];
+                if constexpr (D == 3)
+                    sum_z += f * x_ij[D - 1];
+                sum_squares += f * f * r2;
             }
         } else {
             for (std::size_t e = begin; e < end; ++e)
@@ -208,25 +218,30 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         const std::size_t slice = i / slice_lanes, lane = i % slice_lanes;
         std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
         const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
-        Vec<D> sum(0);
-        Real sum_squares = 0;
         for (std::size_t e = begin; e < end; ++e, at += slice_lanes) {
             const std::uint32_t j = index[e];
             const Vec<D> x_ij = x_i - position[j];
-            Vec<D> g;
-            if constexpr (Kernel::smooth_at_origin)
-                g = factor[e] * x_ij;
-            else
-                g = mass * pair_gradient(local_kernel, state, i, j, x_ij,
-                                         std::sqrt(squared_length<D>(x_ij)));
             slice_index[at] = j;
-            for (int k = 0; k < D; ++k) {
-                slice_gradient[k][at] = float(g[k]);
-                g[k] = slice_gradient[k][at];
+            if constexpr (Kernel::smooth_at_origin) {
+                for (int k = 0; k < D; ++k)
+                    slice_gradient[k][at] = float(factor[e] * x_ij[k]);
+            } else {
+                const Vec<D> g = mass * pair_gradient(local_kernel, state, i, j, x_ij,
+                                                      std::sqrt(squared_length<D>(x_ij)));
+                for (int k = 0; k < D; ++k)
+                    slice_gradient[k][at] = float(g[k]);
+                sum_x += g[0];
+                sum_y += g[1];
+                if constexpr (D == 3)
+                    sum_z += g[D - 1];
+                sum_squares += squared_length<D>(g);
             }
-            sum += g;
-            sum_squares += squared_length<D>(g);
         }
+        Vec<D> sum;
+        if constexpr (D == 2)
+            sum = Vec<D>(sum_x, sum_y);
+        else
+            sum = Vec<D>(sum_x, sum_y, sum_z);
         // The row's padding: g = 0 (the index in cache, and valid).
         for (; at < slice_end; at += slice_lanes) {
             slice_index[at] = std::uint32_t(i);

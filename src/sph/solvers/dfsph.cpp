@@ -97,6 +97,16 @@ void DfsphSolver<D>::round_velocities(const State<D>& state) {
 }
 
 template <int D>
+typename DfsphSolver<D>::SliceView DfsphSolver<D>::slice_view() const {
+    SliceView view{slice_start_.data(), slice_index_.data(), {}, {}};
+    for (int k = 0; k < D; ++k) {
+        view.gradient[k] = slice_gradient_[k].data();
+        view.velocity[k] = velocity_f_[k].data();
+    }
+    return view;
+}
+
+template <int D>
 template <class Kernel>
 SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kernel& kernel,
                                             StepContext<D>& context, State<D>& state) {
@@ -261,19 +271,23 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             const std::size_t wall_begin = walls.start[i], wall_end = walls.start[i + 1];
             const std::uint32_t* wall_index = walls.index.data();
             const Real rho0 = params.rest_density;
+            // Wall pair e's w_ib; adds its V_b W_ib to wall_kernel_sum.
+            const auto wall_pair = [=](std::size_t e, Real& kernel_sum_so_far) {
+                const std::uint32_t b = wall_index[e];
+                const Vec<D> x_ib = x_i - xb[b];
+                const Real r2 = squared_length<D>(x_ib);
+                kernel_sum_so_far += volume[b] * kernel_value_squared(local_kernel, r2);
+                return Vec<D>(rho0 * volume[b] *
+                              boundary_gradient(local_kernel, x_ib, std::sqrt(r2)));
+            };
             if (keep_wall_gradients) {
 #pragma omp simd reduction(+ : wall_kernel_sum)
                 for (std::size_t e = wall_begin; e < wall_end; ++e) {
-                    const std::uint32_t b = wall_index[e];
-                    const Vec<D> x_ib = x_i - xb[b];
-                    const Real r2 = squared_length<D>(x_ib);
-                    const Vec<D> w =
-                        rho0 * volume[b] * boundary_gradient(local_kernel, x_ib, std::sqrt(r2));
+                    const Vec<D> w = wall_pair(e, wall_kernel_sum);
                     // Component by component: a whole vector assigned is a
                     // copy through memory that keeps the loop scalar (GCC 12).
                     for (int k = 0; k < D; ++k)
                         wall_gradient[e][k] = w[k];
-                    wall_kernel_sum += volume[b] * kernel_value_squared(local_kernel, r2);
                 }
                 walls_sum = sum_over_pairs(
                     walls, i, [&](std::size_t e, std::uint32_t) { return wall_gradient[e]; });
@@ -286,16 +300,11 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                 Real sum_x = 0, sum_y = 0, sum_z = 0;
 #pragma omp simd reduction(+ : wall_kernel_sum, sum_x, sum_y, sum_z)
                 for (std::size_t e = wall_begin; e < wall_end; ++e) {
-                    const std::uint32_t b = wall_index[e];
-                    const Vec<D> x_ib = x_i - xb[b];
-                    const Real r2 = squared_length<D>(x_ib);
-                    const Vec<D> w =
-                        rho0 * volume[b] * boundary_gradient(local_kernel, x_ib, std::sqrt(r2));
+                    const Vec<D> w = wall_pair(e, wall_kernel_sum);
                     sum_x += w[0];
                     sum_y += w[1];
                     if constexpr (D == 3)
                         sum_z += w[D - 1];
-                    wall_kernel_sum += volume[b] * kernel_value_squared(local_kernel, r2);
                 }
                 if constexpr (D == 2)
                     walls_sum = Vec<D>(sum_x, sum_y);
@@ -391,13 +400,7 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
     for (;;) {
         const std::span<const Vec<D>> wall_sum = wall_sum_;
         const std::span<float> stiffness_f = stiffness_f_;
-        const std::uint32_t* columns = slice_start_.data();
-        const std::uint32_t* slice_index = slice_index_.data();
-        std::array<const float*, D> slice_gradient, velocity_f;
-        for (int k = 0; k < D; ++k) {
-            slice_gradient[k] = slice_gradient_[k].data();
-            velocity_f[k] = velocity_f_[k].data();
-        }
+        const SliceView slices = slice_view();
         // The compression rate with the current velocities, and the source
         // each particle's stiffness answers: the predicted density error
         // (density solve) or the rate itself (divergence solve).
@@ -408,16 +411,15 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
             const std::size_t first = slice * slice_lanes;
             std::array<Lanes, D> v_i, pair_sum;
             for (int k = 0; k < D; ++k) {
-                load_lanes(v_i[k], velocity_f[k] + first);
+                load_lanes(v_i[k], slices.velocity[k] + first);
                 pair_sum[k] = Lanes{};
             }
-            for (std::size_t at = std::size_t(columns[slice]) * slice_lanes,
-                             end = std::size_t(columns[slice + 1]) * slice_lanes;
+            for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice);
                  at < end; at += slice_lanes)
                 for (int k = 0; k < D; ++k) {
                     Lanes g, v_j;
-                    load_lanes(g, slice_gradient[k] + at);
-                    gather_lanes(v_j, velocity_f[k], slice_index + at);
+                    load_lanes(g, slices.gradient[k] + at);
+                    gather_lanes(v_j, slices.velocity[k], slices.index + at);
                     pair_sum[k] += g * (v_i[k] - v_j);
                 }
             Lanes pair_rate = pair_sum[0];
@@ -503,14 +505,10 @@ SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
     const std::span<const Vec<D>> wall_sum = wall_sum_;
     const std::span<const Real> stiffness = stiffness_;
     const float* stiffness_f = stiffness_f_.data();
-    const std::uint32_t* columns = slice_start_.data();
-    const std::uint32_t* slice_index = slice_index_.data();
-    std::array<const float*, D> slice_gradient;
-    std::array<float*, D> velocity_f;
-    for (int k = 0; k < D; ++k) {
-        slice_gradient[k] = slice_gradient_[k].data();
+    const SliceView slices = slice_view();
+    std::array<float*, D> velocity_f; // written here
+    for (int k = 0; k < D; ++k)
         velocity_f[k] = velocity_f_[k].data();
-    }
 #pragma omp parallel for schedule(dynamic, 32)
     for (std::size_t slice = 0; slice < slice_count(n); ++slice) {
         // sum_j (s_i + s_j) g_ij for the slice's particles, one a lane.
@@ -518,15 +516,14 @@ SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
         Lanes s_i;
         load_lanes(s_i, stiffness_f + first);
         std::array<Lanes, D> pair_sum{};
-        for (std::size_t at = std::size_t(columns[slice]) * slice_lanes,
-                         end = std::size_t(columns[slice + 1]) * slice_lanes;
-             at < end; at += slice_lanes) {
+        for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice); at < end;
+             at += slice_lanes) {
             Lanes s_j;
-            gather_lanes(s_j, stiffness_f, slice_index + at);
+            gather_lanes(s_j, stiffness_f, slices.index + at);
             const Lanes s_ij = s_i + s_j;
             for (int k = 0; k < D; ++k) {
                 Lanes g;
-                load_lanes(g, slice_gradient[k] + at);
+                load_lanes(g, slices.gradient[k] + at);
                 pair_sum[k] += s_ij * g;
             }
         }
@@ -553,15 +550,11 @@ SPHCLIP_CLONED void DfsphSolver<D>::add_fluid_viscosities(const MonaghanTerm<flo
                                                           const MorrisViscosity::Single& morris,
                                                           State<D>& state) const {
     const std::size_t n = state.size();
-    const std::uint32_t* columns = slice_start_.data();
-    const std::uint32_t* slice_index = slice_index_.data();
+    const SliceView slices = slice_view();
     const float* density_f = density_f_.data();
-    std::array<const float*, D> slice_gradient, velocity_f, position_f;
-    for (int k = 0; k < D; ++k) {
-        slice_gradient[k] = slice_gradient_[k].data();
-        velocity_f[k] = velocity_f_[k].data();
+    std::array<const float*, D> position_f;
+    for (int k = 0; k < D; ++k)
         position_f[k] = position_f_[k].data();
-    }
 #pragma omp parallel for schedule(dynamic, 32)
     for (std::size_t slice = 0; slice < slice_count(n); ++slice) {
         const std::size_t first = slice * slice_lanes;
@@ -569,26 +562,25 @@ SPHCLIP_CLONED void DfsphSolver<D>::add_fluid_viscosities(const MonaghanTerm<flo
         Lanes rho_i;
         for (int k = 0; k < D; ++k) {
             load_lanes(x_i[k], position_f[k] + first);
-            load_lanes(v_i[k], velocity_f[k] + first);
+            load_lanes(v_i[k], slices.velocity[k] + first);
         }
         load_lanes(rho_i, density_f + first);
-        for (std::size_t at = std::size_t(columns[slice]) * slice_lanes,
-                         end = std::size_t(columns[slice + 1]) * slice_lanes;
-             at < end; at += slice_lanes) {
+        for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice); at < end;
+             at += slice_lanes) {
             std::array<Lanes, D> x_ij, v_ij, g;
             Lanes r2{}, v_dot_x{}, x_dot_g{}, rho_j;
             for (int k = 0; k < D; ++k) {
                 Lanes other;
-                gather_lanes(other, position_f[k], slice_index + at);
+                gather_lanes(other, position_f[k], slices.index + at);
                 x_ij[k] = x_i[k] - other;
-                gather_lanes(other, velocity_f[k], slice_index + at);
+                gather_lanes(other, slices.velocity[k], slices.index + at);
                 v_ij[k] = v_i[k] - other;
-                load_lanes(g[k], slice_gradient[k] + at);
+                load_lanes(g[k], slices.gradient[k] + at);
                 r2 += x_ij[k] * x_ij[k];
                 v_dot_x += v_ij[k] * x_ij[k];
                 x_dot_g += x_ij[k] * g[k];
             }
-            gather_lanes(rho_j, density_f, slice_index + at);
+            gather_lanes(rho_j, density_f, slices.index + at);
             if constexpr (artificial) {
                 Lanes Pi_ij;
                 Pi(v_dot_x, rho_i + rho_j, r2, Pi_ij);

@@ -126,6 +126,22 @@ class DfsphSolver final : public Solver<D> {
     void add_fluid_viscosities(const MonaghanTerm<float>& Pi, const MorrisViscosity::Single& morris,
                                State<D>& state) const;
     void round_velocities(const State<D>& state);
+    // The slices as the pair loops read them: pointers, local to a loop
+    // (through `this` GCC 12 keeps a loop scalar).
+    struct SliceView {
+        const std::uint32_t* columns;         // slice_start_
+        const std::uint32_t* index;           // slice_index_
+        std::array<const float*, D> gradient; // slice_gradient_
+        std::array<const float*, D> velocity; // velocity_f_
+        // A slice's entries: [first_entry, end_entry) in steps of slice_lanes.
+        std::size_t first_entry(std::size_t slice) const {
+            return std::size_t(columns[slice]) * slice_lanes;
+        }
+        std::size_t end_entry(std::size_t slice) const {
+            return std::size_t(columns[slice + 1]) * slice_lanes;
+        }
+    };
+    SliceView slice_view() const;
     std::vector<Vec<D>> wall_gradient_; // rho0 V_b grad W_ib per wall pair
     std::vector<Real> wall_motion_;     // sum_b w_ib . v_b; empty when no wall moves
     std::vector<Real> zero_terms_;      // no pressure, for the viscosities' pass

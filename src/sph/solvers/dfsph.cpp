@@ -151,12 +151,9 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             resize_with_headroom(component, entries);
         resize_with_headroom(pair_factor_, pairs.pair_count());
     }
-    // w_ib per wall pair, kept where they are read again: the walls'
-    // hydrostatic pressure (add_wall_weight) and the moving walls' motion.
-    const bool keep_wall_gradients =
-        context.boundary && (params.wall_gravity != Vec<D>(0) || context.boundary->has_moving());
-    if (keep_wall_gradients)
-        resize_with_headroom(wall_gradient_, context.boundary_neighbours.pair_count() + simd_lanes);
+    resize_with_headroom(wall_gradient_,
+                         (context.boundary ? context.boundary_neighbours.pair_count() : 0) +
+                             simd_lanes);
     // Moving walls: sum_b w_ib . v_b, fixed for the step (v_b is).
     const bool moving = context.boundary && context.boundary->has_moving();
     wall_motion_.resize(moving ? n : 0);
@@ -271,46 +268,25 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             const std::size_t wall_begin = walls.start[i], wall_end = walls.start[i + 1];
             const std::uint32_t* wall_index = walls.index.data();
             const Real rho0 = params.rest_density;
-            // Wall pair e's w_ib; adds its V_b W_ib to wall_kernel_sum.
-            const auto wall_pair = [=](std::size_t e, Real& kernel_sum_so_far) {
+#pragma omp simd reduction(+ : wall_kernel_sum)
+            for (std::size_t e = wall_begin; e < wall_end; ++e) {
                 const std::uint32_t b = wall_index[e];
                 const Vec<D> x_ib = x_i - xb[b];
                 const Real r2 = squared_length<D>(x_ib);
-                kernel_sum_so_far += volume[b] * kernel_value_squared(local_kernel, r2);
-                return Vec<D>(rho0 * volume[b] *
-                              boundary_gradient(local_kernel, x_ib, std::sqrt(r2)));
-            };
-            if (keep_wall_gradients) {
-#pragma omp simd reduction(+ : wall_kernel_sum)
-                for (std::size_t e = wall_begin; e < wall_end; ++e) {
-                    const Vec<D> w = wall_pair(e, wall_kernel_sum);
-                    // Component by component: a whole vector assigned is a
-                    // copy through memory that keeps the loop scalar (GCC 12).
-                    for (int k = 0; k < D; ++k)
-                        wall_gradient[e][k] = w[k];
-                }
-                walls_sum = sum_over_pairs(
-                    walls, i, [&](std::size_t e, std::uint32_t) { return wall_gradient[e]; });
-                if (moving)
-                    wall_motion_[i] = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
-                        return glm::dot(wall_gradient[e], wall_velocity[b]);
-                    });
-            } else {
-                // Only the sums: no store keeps the loop scalar.
-                Real sum_x = 0, sum_y = 0, sum_z = 0;
-#pragma omp simd reduction(+ : wall_kernel_sum, sum_x, sum_y, sum_z)
-                for (std::size_t e = wall_begin; e < wall_end; ++e) {
-                    const Vec<D> w = wall_pair(e, wall_kernel_sum);
-                    sum_x += w[0];
-                    sum_y += w[1];
-                    if constexpr (D == 3)
-                        sum_z += w[D - 1];
-                }
-                if constexpr (D == 2)
-                    walls_sum = Vec<D>(sum_x, sum_y);
-                else
-                    walls_sum = Vec<D>(sum_x, sum_y, sum_z);
+                const Vec<D> w =
+                    rho0 * volume[b] * boundary_gradient(local_kernel, x_ib, std::sqrt(r2));
+                // Component by component: a whole vector assigned is a copy
+                // through memory that keeps the loop scalar (GCC 12).
+                for (int k = 0; k < D; ++k)
+                    wall_gradient[e][k] = w[k];
+                wall_kernel_sum += volume[b] * kernel_value_squared(local_kernel, r2);
             }
+            walls_sum = sum_over_pairs(
+                walls, i, [&](std::size_t e, std::uint32_t) { return wall_gradient[e]; });
+            if (moving)
+                wall_motion_[i] = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
+                    return glm::dot(wall_gradient[e], wall_velocity[b]);
+                });
         }
         wall_sum[i] = walls_sum;
         // S_i = |G_f + 2 G_w|^2 + sum |g|^2 (the walls mirrored, above).

@@ -120,7 +120,7 @@ class DfsphSolver final : public Solver<D> {
     std::vector<Real> pair_factor_;                    // m W'(r) / r per pair, on the way
     std::array<std::vector<float>, D> velocity_f_;     // v_i, rounded after each change
     std::vector<float> stiffness_f_;                   // s_i of this iteration, rounded
-    std::array<std::vector<float>, D> position_f_;     // x_i - x_0, for the viscosities
+    std::array<std::vector<float>, D> position_f_;     // x_i - the domain's corner (viscosities)
     std::vector<float> density_f_;                     // rho_i, for the viscosities
     template <bool artificial, bool laminar>
     void add_fluid_viscosities(const MonaghanTerm<float>& Pi, const MorrisViscosity::Single& morris,

@@ -223,6 +223,8 @@ TEST_CASE("a value out of its range names the field", "[scene]") {
         {"/solver/dt", "0", "solver.dt", "greater than 0"},
         {"/solver/rebalance_above", "0.5", "solver.rebalance_above", "between 1 and 1000"},
         {"/solver/rebalance_above", "2000", "solver.rebalance_above", "between 1 and 1000"},
+        {"/solver/momentum", "1", "solver.momentum", "below 1"},
+        {"/solver/momentum", "-0.5", "solver.momentum", "negative"},
         {"/fluid/smoothing_ratio", "-2", "fluid.smoothing_ratio", "greater than 0"},
         {"/dimension", "4", "dimension", "between 2 and 3"},
         {"/dimension", "1", "dimension", "between 2 and 3"},

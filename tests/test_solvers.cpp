@@ -486,6 +486,33 @@ TEST_CASE("dfsph's warm start saves pressure iterations", "[solvers]") {
     CHECK(iterations[1] < iterations[0]);
 }
 
+TEST_CASE("dfsph's momentum saves iterations and keeps the flow", "[solvers]") {
+    // The built-in 2D dam break (a = 57 mm, 3,200 particles) with water's
+    // viscosity to 0.2 s: the column collapsing, the surge running along the
+    // floor. Measured: 7,030 iterations without momentum, 4,428 with 0.5;
+    // the fronts (the farthest particle) 3.1 mm apart after running 225 mm.
+    struct Outcome {
+        std::uint64_t iterations;
+        Real front;
+    };
+    const auto run = [](const char* momentum) {
+        auto sim = make_simulation<2>(default_scene({{"solver.name", "dfsph"},
+                                                     {"material.viscosity", "0.001"},
+                                                     {"solver.momentum", momentum}}));
+        sim.advance_to(0.2);
+        const StepCounters c = sim.take_counters();
+        Real front = 0;
+        for (const auto& x : sim.state().position)
+            front = std::max(front, x.x);
+        return Outcome{c.pressure_iterations + c.divergence_iterations, front};
+    };
+    const Outcome plain = run("0"), heavy = run("0.5");
+    WARN("iterations: plain " << plain.iterations << ", momentum " << heavy.iterations
+                              << "; fronts " << plain.front << ", " << heavy.front << " m");
+    CHECK(heavy.iterations < 0.8 * plain.iterations);
+    CHECK(std::abs(heavy.front - plain.front) < 0.03 * (plain.front - 0.05715));
+}
+
 TEST_CASE("dfsph's half warm start keeps a deep column's pressure", "[solvers]") {
     // A column 80 rows deep and 8 wide, 1 ms steps. Carried whole, the last
     // step's pressure leaves a solve that starts within its tolerance

@@ -334,6 +334,10 @@ void check_solver(const FieldReader& r, const Scene& s) {
     if (s.solver.dt_min > s.solver.dt_max)
         r.fail("solver.dt_min", fmt::format("must not exceed solver.dt_max ({} s), got {} s",
                                             s.solver.dt_max, s.solver.dt_min));
+    // At 1 a pressure step would never die out.
+    if (!(s.solver.momentum < 1))
+        r.fail("solver.momentum",
+               fmt::format("must be below 1 (0: no heavy-ball term), got {}", s.solver.momentum));
     if (s.solver.min_iterations > s.solver.max_iterations)
         r.fail("solver.min_iterations",
                fmt::format("must not exceed solver.max_iterations ({}), got {}",

@@ -70,7 +70,8 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
                         .min_iterations = scene.solver.min_iterations,
                         .max_iterations = scene.solver.max_iterations,
                         .warm_start = scene.solver.warm_start,
-                        .warm_start_fraction = scene.solver.warm_start_fraction};
+                        .warm_start_fraction = scene.solver.warm_start_fraction,
+                        .momentum = scene.solver.momentum};
     p.watchdog = {scene.watchdog.retries, scene.watchdog.max_density_ratio,
                   scene.watchdog.max_displacement, derived.max_speed,
                   !scene.watchdog.max_speed.has_value()};

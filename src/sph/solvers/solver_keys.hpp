@@ -29,6 +29,7 @@ struct SolverSettings {
     int max_iterations = PressureSolveSettings{}.max_iterations;                // dfsph
     bool warm_start = PressureSolveSettings{}.warm_start;                       // dfsph
     double warm_start_fraction = PressureSolveSettings{}.warm_start_fraction;   // dfsph
+    double momentum = PressureSolveSettings{}.momentum;                         // dfsph
     // sorted_grid | hash (the seed's) | all_pairs
     NeighbourSearchKind neighbour_search = NeighbourSearchKind::sorted_grid;
     // Steps between spatial sorts of the particle arrays by cell; 0: never;

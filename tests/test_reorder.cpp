@@ -123,21 +123,17 @@ TEST_CASE("a reorder is a permutation that keeps every particle whole", "[reorde
 TEST_CASE("reordering changes the physics by round-off only", "[reorder]") {
     // wcsph on the sorted grid also in single precision, where a cell's
     // candidates come in memory order: float's round-off (6e-8), amplified.
-    // dfsph's pairs are floats too (x_ij from float offsets, a part in 10^7
-    // of a box; its solves' sums), so a position 1e-16 off can round an
-    // x_ij the other way: measured 2-5e-8 m after 20 steps.
     for (const char* solver : {"seed", "wcsph", "dfsph", "wcsph single"})
         for (const char* search : {"sorted_grid", "hash"}) {
-            const bool wcsph_single = std::string(solver) == "wcsph single";
-            const bool single = wcsph_single || std::string(solver) == "dfsph";
-            if (wcsph_single && std::string(search) != "sorted_grid")
+            const bool single = std::string(solver) == "wcsph single";
+            if (single && std::string(search) != "sorted_grid")
                 continue;
             INFO(solver << " " << search);
             auto run = [&](const char* every) {
                 auto sim = make_simulation<2>(
-                    dam_break({{"solver.name", wcsph_single ? "wcsph" : solver},
+                    dam_break({{"solver.name", single ? "wcsph" : solver},
                                {"solver.neighbour_search", search},
-                               {"solver.precision", wcsph_single ? "single" : "double"},
+                               {"solver.precision", single ? "single" : "double"},
                                {"solver.reorder_every", every}}));
                 for (int k = 0; k < 20; ++k)
                     sim.step();
@@ -184,14 +180,14 @@ TEST_CASE("dfsph's warm start follows the particles through a reorder", "[reorde
                              std::abs(never.pressure[i] - often.pressure[in_often[never.id[i]]]));
         }
         REQUIRE(largest > 100); // Pa: the tank has a pressure to compare
-        // With one iteration the pressure is the warm start's, to round-off
-        // (measured 1.5e-7 of the largest). With a hundred it is where each
-        // solve stopped, within its tolerance, and the float round-off of
-        // dfsph's pairs decides on which iteration: measured 2% of the
-        // largest apart. A stranger's pressure would be off by about the
-        // largest itself.
-        CHECK(worst < (iterations == 1 ? 1e-6 : 0.1) * largest);
-        CHECK(largest_gap(never, often) < 1e-6);
+        // With a hundred iterations the pressure is where each solve
+        // stopped, and the solves' float sums, whose order a reorder
+        // changes, can decide the last iterations differently (with
+        // solver.momentum, whose steps depend on the last ones: measured
+        // 3.4e-6 of the largest). A stranger's pressure would be off by
+        // about the largest itself.
+        CHECK(worst < (iterations == 1 ? 1e-6 : 1e-4) * largest);
+        CHECK(largest_gap(never, often) < 1e-9);
     }
 }
 

@@ -140,20 +140,6 @@ struct CubicSpline {
         return dW(r) / r;
     }
     Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
-    // W and W'(r) / r for each lane of a register (GCC's vector extension;
-    // the pieces as blends), into references: a wide vector passed by value
-    // changes the ABI without AVX.
-    template <class Lanes>
-    requires(!std::floating_point<Lanes>) void W_and_dW_over_r(const Lanes& r, Lanes& w,
-                                                               Lanes& dw_over_r) const {
-        const Lanes q = r * inverse_h, rest = 1 - q;
-        const Lanes inner_w = norm * (6 * (q * q * q - q * q) + 1),
-                    outer_w = (2 * norm) * rest * rest * rest;
-        const Lanes inner_f = (6 * norm * inverse_h * inverse_h) * (3 * q - 2),
-                    outer_f = (-6 * norm * inverse_h) * rest * rest / r; // r > h / 2 where taken
-        w = q < 1 ? (q <= T(0.5) ? inner_w : outer_w) : Lanes{};
-        dw_over_r = q < 1 ? (q <= T(0.5) ? inner_f : outer_f) : Lanes{};
-    }
 };
 
 // Wendland C2 (Wendland 1995; Dehnen & Aly 2012, table 1), support radius h:
@@ -180,14 +166,6 @@ struct WendlandC2 {
         return q < 1 ? -20 * norm * inverse_h * inverse_h * detail::cube(1 - q) : 0;
     }
     Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
-    // As CubicSpline's, lane by lane.
-    template <class Lanes>
-    requires(!std::floating_point<Lanes>) void W_and_dW_over_r(const Lanes& r, Lanes& w,
-                                                               Lanes& dw_over_r) const {
-        const Lanes q = r * inverse_h, rest = 1 - q, rest3 = rest * rest * rest;
-        w = q < 1 ? norm * rest3 * rest * (1 + 4 * q) : Lanes{};
-        dw_over_r = q < 1 ? (-20 * norm * inverse_h * inverse_h) * rest3 : Lanes{};
-    }
 };
 
 // The seed's pair of kernels as one kernel: poly6 values for the density,

@@ -76,18 +76,6 @@ SPHCLIP_INLINE_IN_CLONES void gather_lanes(Lanes& lanes, const float* values,
 #endif
 }
 
-// root = sqrt(square), lane by lane: GCC makes the loop one vector square
-// root (sqrtps, vsqrtps) in each clone.
-SPHCLIP_INLINE_IN_CLONES void sqrt_lanes(Lanes& root, const Lanes& square) {
-    Lanes result;
-    for (std::size_t l = 0; l < slice_lanes; ++l)
-        result[l] = std::sqrt(square[l]);
-    root = result;
-}
-
-// A register's lanes widened to double (two registers, or one of AVX-512's).
-using DoubleLanes = double __attribute__((vector_size(8 * slice_lanes)));
-
 std::size_t slice_count(std::size_t n) {
     return (n + slice_lanes - 1) / slice_lanes;
 }
@@ -161,6 +149,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         resize_with_headroom(slice_index_, entries);
         for (std::vector<float>& component : slice_gradient_)
             resize_with_headroom(component, entries);
+        resize_with_headroom(pair_factor_, pairs.pair_count());
     }
     resize_with_headroom(wall_gradient_,
                          (context.boundary ? context.boundary_neighbours.pair_count() : 0) +
@@ -174,6 +163,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
     // Local spans, not the members: loops that read members through `this`
     // stay scalar.
+    const std::span<Real> pair_factor = pair_factor_;
     const std::span<std::uint32_t> slice_index = slice_index_;
     std::array<float*, D> slice_gradient;
     for (int k = 0; k < D; ++k)
@@ -189,16 +179,85 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     // The same on every rank, so that a run's bits do not depend on the ranks.
     const Vec<D> origin = params.domain.min;
     const Real self = kernel_value_squared(kernel, Real(0));
-    const Real mass = params.mass;
-    const Real rho0 = params.rest_density;
-    const NeighbourList& pairs = context.neighbours;
-    const Vec<D>* position = state.position.data();
-    // After particle i's fluid row (the sums of its g_ij and |g_ij|^2, and of
-    // its W_ij): its walls' terms, its factor 1 / S_i and its density.
-    const auto finish_particle = [&](std::size_t i, const Vec<D>& sum, Real sum_squares,
-                                     Real kernel_sum) {
+    // Chunks of whole slices: a slice is written by one thread.
+    static_assert(256 % slice_lanes == 0);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+        const NeighbourList& pairs = context.neighbours;
+        // Locals for what the loop reads (as in sum_over_pairs): through
+        // references GCC 12 leaves this loop scalar.
+        const std::size_t begin = pairs.start[i], end = pairs.start[i + 1];
+        const std::uint32_t* index = pairs.index.data();
+        const Vec<D>* position = state.position.data();
         const Vec<D> x_i = position[i];
+        const Real mass = params.mass;
         const Kernel local_kernel = kernel;
+        // g_ij into its slice (lane i % slice_lanes of columns 0, 1, ...),
+        // with the sums of the rounded values, which the iterations use.
+        Real* factor = pair_factor.data();
+        // sum_j W_ij, for a summed density (Akinci et al. 2012, eq. 6, with
+        // the walls' share below): rho_i = m (W(0) + sum_j W_ij) + rho0 sum_b V_b W_ib.
+        Real kernel_sum = 0;
+        // The sums of the row's g_ij for the factor S_i (in double, before
+        // their rounding to floats: a diagonal preconditioner, which that
+        // rounding does not change to speak of).
+        Real sum_x = 0, sum_y = 0, sum_z = 0, sum_squares = 0;
+        if constexpr (Kernel::smooth_at_origin) {
+            // m W'(r) / r first, in a loop that vectorises (the square root
+            // and the kernel); the stores into the slice keep a loop scalar.
+#pragma omp simd reduction(+ : kernel_sum, sum_x, sum_y, sum_z, sum_squares)
+            for (std::size_t e = begin; e < end; ++e) {
+                const Vec<D> x_ij = x_i - position[index[e]];
+                const Real r2 = squared_length<D>(x_ij);
+                const Real f = mass * local_kernel.dW_over_r(std::sqrt(r2));
+                factor[e] = f;
+                kernel_sum += kernel_value_squared(local_kernel, r2);
+                sum_x += f * x_ij[0];
+                sum_y += f * x_ij[1];
+                if constexpr (D == 3)
+                    sum_z += f * x_ij[D - 1];
+                sum_squares += f * f * r2;
+            }
+        } else {
+            for (std::size_t e = begin; e < end; ++e)
+                kernel_sum +=
+                    kernel_value_squared(local_kernel, squared_length<D>(x_i - position[index[e]]));
+        }
+        for (int k = 0; k < D; ++k)
+            position_f[k][i] = float(x_i[k] - origin[k]);
+        const std::size_t slice = i / slice_lanes, lane = i % slice_lanes;
+        std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
+        const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
+        for (std::size_t e = begin; e < end; ++e, at += slice_lanes) {
+            const std::uint32_t j = index[e];
+            const Vec<D> x_ij = x_i - position[j];
+            slice_index[at] = j;
+            if constexpr (Kernel::smooth_at_origin) {
+                for (int k = 0; k < D; ++k)
+                    slice_gradient[k][at] = float(factor[e] * x_ij[k]);
+            } else {
+                const Vec<D> g = mass * pair_gradient(local_kernel, state, i, j, x_ij,
+                                                      std::sqrt(squared_length<D>(x_ij)));
+                for (int k = 0; k < D; ++k)
+                    slice_gradient[k][at] = float(g[k]);
+                sum_x += g[0];
+                sum_y += g[1];
+                if constexpr (D == 3)
+                    sum_z += g[D - 1];
+                sum_squares += squared_length<D>(g);
+            }
+        }
+        Vec<D> sum;
+        if constexpr (D == 2)
+            sum = Vec<D>(sum_x, sum_y);
+        else
+            sum = Vec<D>(sum_x, sum_y, sum_z);
+        // The row's padding: g = 0 (the index in cache, and valid).
+        for (; at < slice_end; at += slice_lanes) {
+            slice_index[at] = std::uint32_t(i);
+            for (int k = 0; k < D; ++k)
+                slice_gradient[k][at] = 0;
+        }
         Vec<D> walls_sum(0);
         Real wall_kernel_sum = 0; // sum_b V_b W_ib
         if (context.boundary) {
@@ -208,6 +267,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             const NeighbourList& walls = context.boundary_neighbours;
             const std::size_t wall_begin = walls.start[i], wall_end = walls.start[i + 1];
             const std::uint32_t* wall_index = walls.index.data();
+            const Real rho0 = params.rest_density;
 #pragma omp simd reduction(+ : wall_kernel_sum)
             for (std::size_t e = wall_begin; e < wall_end; ++e) {
                 const std::uint32_t b = wall_index[e];
@@ -233,134 +293,9 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         const Vec<D> G = sum + wall_mirror * walls_sum;
         const Real S = glm::dot(G, G) + sum_squares;
         factor_[i] = S > tiny ? 1 / S : 0;
-        // sum_j W_ij, for a summed density (Akinci et al. 2012, eq. 6, with
-        // the walls' share): rho_i = m (W(0) + sum_j W_ij) + rho0 sum_b V_b W_ib.
         if (summed)
-            state.density[i] = mass * (self + kernel_sum) + rho0 * wall_kernel_sum;
+            state.density[i] = mass * (self + kernel_sum) + params.rest_density * wall_kernel_sum;
         density_f[i] = float(state.density[i]);
-    };
-
-    if constexpr (Kernel::smooth_at_origin) {
-        // Column by column, a slice's particles one a lane, as the
-        // iterations read them: each column's x_j gathered, its g_ij stored
-        // whole, every sum in its lane (in row order, so a particle's sums
-        // do not depend on its slice or on the thread count). The pairs in
-        // floats: x_ij from the positions' offsets from the domain's
-        // corner (a few parts in 10^6 of h in a box 100 h wide, against
-        // tolerances of 5e-4; x_ji = -x_ij still exactly, so g_ji = -g_ij).
-        // Row by row in double, with the stores scattered into the slices,
-        // this pass cost 137 ns a particle-step on SPlisHSPlasH's dam break
-        // (Intel Xeon, 2 threads; docs/benchmarks.md). In double with
-        // gathers of doubles, 220.
-        const typename Kernel::Single lane_kernel(params.h);
-        const float mass_f = float(mass);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < slices * slice_lanes; ++i)
-            for (int k = 0; k < D; ++k)
-                position_f[k][i] = i < n ? float(position[i][k] - origin[k]) : 0.0f;
-#pragma omp parallel for schedule(dynamic, 32)
-        for (std::size_t slice = 0; slice < slices; ++slice) {
-            const std::size_t first = slice * slice_lanes;
-            const std::size_t begin_at = std::size_t(slice_start_[slice]) * slice_lanes,
-                              end_at = std::size_t(slice_start_[slice + 1]) * slice_lanes;
-            // The rows into the columns, lane l's at begin_at + l, + slice_lanes, ...;
-            // the padding's j is the particle itself (x_ij = 0, so g = 0).
-            Lanes length{};
-            for (std::size_t l = 0; l < slice_lanes; ++l) {
-                const std::size_t i = first + l;
-                const std::uint32_t self_index = std::uint32_t(i < n ? i : first);
-                std::size_t at = begin_at + l;
-                if (i < n) {
-                    const std::uint32_t* row = pairs.index.data() + pairs.start[i];
-                    const std::uint32_t count = pairs.start[i + 1] - pairs.start[i];
-                    for (std::uint32_t e = 0; e < count; ++e, at += slice_lanes)
-                        slice_index[at] = row[e];
-                    length[l] = float(count);
-                }
-                for (; at < end_at; at += slice_lanes)
-                    slice_index[at] = self_index;
-            }
-            std::array<Lanes, D> x_i;
-            std::array<DoubleLanes, D> g_sum;
-            for (int k = 0; k < D; ++k) {
-                load_lanes(x_i[k], position_f[k] + first);
-                g_sum[k] = DoubleLanes{};
-            }
-            // The sums in double: rho_i - rho0, the density solve's source,
-            // is a small difference of large sums, and a term is rounded
-            // alike wherever it comes in a row (a float sum's round-off
-            // would change with the row's order, that is with a reorder).
-            DoubleLanes kernel_sum{}, g_squares{};
-            Lanes column{};
-            for (std::size_t at = begin_at; at < end_at; at += slice_lanes) {
-                std::array<Lanes, D> x_ij;
-                Lanes r2{};
-                for (int k = 0; k < D; ++k) {
-                    Lanes x_j;
-                    gather_lanes(x_j, position_f[k], slice_index.data() + at);
-                    x_ij[k] = x_i[k] - x_j;
-                    r2 += x_ij[k] * x_ij[k];
-                }
-                Lanes r, f, w;
-                sqrt_lanes(r, r2);
-                lane_kernel.W_and_dW_over_r(r, w, f);
-                f *= mass_f;
-                w = column < length ? w : Lanes{};
-                for (int k = 0; k < D; ++k) {
-                    const Lanes g = f * x_ij[k];
-                    std::memcpy(slice_gradient[k] + at, &g, sizeof g);
-                    g_sum[k] += __builtin_convertvector(g, DoubleLanes);
-                }
-                g_squares += __builtin_convertvector(f * f * r2, DoubleLanes);
-                kernel_sum += __builtin_convertvector(w, DoubleLanes);
-                column += 1.0f;
-            }
-            for (std::size_t i = first; i < std::min(n, first + slice_lanes); ++i) {
-                const std::size_t l = i - first;
-                Vec<D> sum;
-                for (int k = 0; k < D; ++k)
-                    sum[k] = Real(g_sum[k][l]);
-                finish_particle(i, sum, Real(g_squares[l]), Real(kernel_sum[l]));
-            }
-        }
-    } else {
-        // A kernel whose gradient is not its value's (the seed's): row by
-        // row, in double, g_ij from pair_gradient (its r -> 0 limit).
-        static_assert(256 % slice_lanes == 0); // chunks of whole slices: a slice is one thread's
-#pragma omp parallel for schedule(dynamic, 256)
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t begin = pairs.start[i], end = pairs.start[i + 1];
-            const std::uint32_t* index = pairs.index.data();
-            const Vec<D> x_i = position[i];
-            const Kernel local_kernel = kernel;
-            Real kernel_sum = 0, sum_squares = 0;
-            Vec<D> sum(0);
-            for (int k = 0; k < D; ++k)
-                position_f[k][i] = float(x_i[k] - origin[k]);
-            const std::size_t slice = i / slice_lanes, lane = i % slice_lanes;
-            std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
-            const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
-            for (std::size_t e = begin; e < end; ++e, at += slice_lanes) {
-                const std::uint32_t j = index[e];
-                const Vec<D> x_ij = x_i - position[j];
-                const Real r2 = squared_length<D>(x_ij);
-                kernel_sum += kernel_value_squared(local_kernel, r2);
-                const Vec<D> g =
-                    mass * pair_gradient(local_kernel, state, i, j, x_ij, std::sqrt(r2));
-                slice_index[at] = j;
-                for (int k = 0; k < D; ++k)
-                    slice_gradient[k][at] = float(g[k]);
-                sum += g;
-                sum_squares += squared_length<D>(g);
-            }
-            // The row's padding: g = 0 (the index in cache, and valid).
-            for (; at < slice_end; at += slice_lanes) {
-                slice_index[at] = std::uint32_t(i);
-                for (int k = 0; k < D; ++k)
-                    slice_gradient[k][at] = 0;
-            }
-            finish_particle(i, sum, sum_squares, kernel_sum);
-        }
     }
     timed.reset();
     // Over ranks: the halo's densities from their owners (the viscosities read them).

@@ -117,6 +117,7 @@ class DfsphSolver final : public Solver<D> {
     std::vector<std::uint32_t> slice_start_;           // first column of each slice, then the end
     std::vector<std::uint32_t> slice_index_;           // j, per column and lane
     std::array<std::vector<float>, D> slice_gradient_; // g_ij = m grad W_ij, by component
+    std::vector<Real> pair_factor_;                    // m W'(r) / r per pair, on the way
     std::array<std::vector<float>, D> velocity_f_;     // v_i, rounded after each change
     std::vector<float> stiffness_f_;                   // s_i of this iteration, rounded
     std::array<std::vector<float>, D> position_f_;     // x_i - the domain's corner (viscosities)

@@ -180,13 +180,7 @@ TEST_CASE("dfsph's warm start follows the particles through a reorder", "[reorde
                              std::abs(never.pressure[i] - often.pressure[in_often[never.id[i]]]));
         }
         REQUIRE(largest > 100); // Pa: the tank has a pressure to compare
-        // With a hundred iterations the pressure is where each solve
-        // stopped, and the solves' float sums, whose order a reorder
-        // changes, can decide the last iterations differently (with
-        // solver.momentum, whose steps depend on the last ones: measured
-        // 3.4e-6 of the largest). A stranger's pressure would be off by
-        // about the largest itself.
-        CHECK(worst < (iterations == 1 ? 1e-6 : 1e-4) * largest);
+        CHECK(worst < 1e-6 * largest);
         CHECK(largest_gap(never, often) < 1e-9);
     }
 }

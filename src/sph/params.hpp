@@ -69,7 +69,7 @@ struct PressureSolveSettings {
     int max_iterations = 100;
     bool warm_start = true;         // start from the last step's pressure...
     Real warm_start_fraction = 0.5; // ...times this (the density solve's; dfsph.cpp)
-    Real momentum = 0.5;            // heavy-ball term of the iterations (dfsph.cpp)
+    Real momentum = 0;              // heavy-ball term of the iterations (dfsph.cpp)
 };
 
 // The per-step checks and their retries (watchdog.hpp).

@@ -118,7 +118,7 @@ const KeyTable<SolverSettings>& solver_keys() {
          .doc = "dfsph: the heavy-ball term of the solves' iterations (Polyak 1964): each "
                 "particle's pressure step adds this times its last one while the two agree in "
                 "sign; below 1. 0: plain relaxed Jacobi. 0.5 takes 1.6-1.7x fewer density "
-                "iterations on dam breaks and a deep tank, for 3-8% less time in 3D and none "
+                "iterations on dam breaks and a deep tank, for 6-12% less time in 3D and none "
                 "in 2D; the fastest particles then run 15% faster and a tank's pressure is "
                 "less exact (2D tank 0.2% -> 1.5% RMS). docs/solvers.md",
          .bound = Bound::non_negative},

@@ -76,6 +76,45 @@ SPHCLIP_INLINE_IN_CLONES void gather_lanes(Lanes& lanes, const float* values,
 #endif
 }
 
+// A particle's floats as the pair loops gather them: four to a particle
+// (a 16-byte load), its D components then one more (the padding, or the
+// density beside a position).
+using Quad = float __attribute__((vector_size(16)));
+
+// out[c][l] = quads[4 index[l] + c] for the 4 components c: the lanes'
+// quads loaded whole and transposed in registers, 8 loads and 11 shuffles
+// where gathering by component takes 4 gathers of 8 (the rate and the
+// viscosities' passes, measured: docs/benchmarks.md, "The solves' loads").
+SPHCLIP_INLINE_IN_CLONES void gather_quads(std::array<Lanes, 4>& out, const float* quads,
+                                           const std::uint32_t* index) {
+    static_assert(slice_lanes == 8);
+    std::array<Quad, 8> q;
+    for (std::size_t l = 0; l < 8; ++l)
+        std::memcpy(&q[l], quads + 4 * std::size_t(index[l]), sizeof(Quad));
+    // [q0 | q4], [q1 | q5], ...: each 128-bit half then transposes as 4 x 4.
+    const Lanes a0 = __builtin_shufflevector(q[0], q[4], 0, 1, 2, 3, 4, 5, 6, 7);
+    const Lanes a1 = __builtin_shufflevector(q[1], q[5], 0, 1, 2, 3, 4, 5, 6, 7);
+    const Lanes a2 = __builtin_shufflevector(q[2], q[6], 0, 1, 2, 3, 4, 5, 6, 7);
+    const Lanes a3 = __builtin_shufflevector(q[3], q[7], 0, 1, 2, 3, 4, 5, 6, 7);
+    const Lanes t0 = __builtin_shufflevector(a0, a1, 0, 8, 1, 9, 4, 12, 5, 13);
+    const Lanes t1 = __builtin_shufflevector(a0, a1, 2, 10, 3, 11, 6, 14, 7, 15);
+    const Lanes t2 = __builtin_shufflevector(a2, a3, 0, 8, 1, 9, 4, 12, 5, 13);
+    const Lanes t3 = __builtin_shufflevector(a2, a3, 2, 10, 3, 11, 6, 14, 7, 15);
+    out[0] = __builtin_shufflevector(t0, t2, 0, 1, 8, 9, 4, 5, 12, 13);
+    out[1] = __builtin_shufflevector(t0, t2, 2, 3, 10, 11, 6, 7, 14, 15);
+    out[2] = __builtin_shufflevector(t1, t3, 0, 1, 8, 9, 4, 5, 12, 13);
+    out[3] = __builtin_shufflevector(t1, t3, 2, 3, 10, 11, 6, 7, 14, 15);
+}
+
+// The same for the slice's own particles, first .. first + 7.
+SPHCLIP_INLINE_IN_CLONES void load_quads(std::array<Lanes, 4>& out, const float* quads,
+                                         std::size_t first) {
+    std::array<std::uint32_t, 8> index;
+    for (std::size_t l = 0; l < 8; ++l)
+        index[l] = std::uint32_t(first + l);
+    gather_quads(out, quads, index.data());
+}
+
 std::size_t slice_count(std::size_t n) {
     return (n + slice_lanes - 1) / slice_lanes;
 }
@@ -85,24 +124,19 @@ template <int D>
 void DfsphSolver<D>::round_velocities(const State<D>& state) {
     const std::size_t n = state.size();
     // Whole slices: the lanes past the last particle read 0.
-    for (std::vector<float>& component : velocity_f_)
-        resize_with_headroom(component, slice_count(n) * slice_lanes);
-    std::array<float*, D> rounded;
-    for (int k = 0; k < D; ++k)
-        rounded[k] = velocity_f_[k].data();
+    resize_with_headroom(velocity_f_, 4 * slice_count(n) * slice_lanes);
+    float* rounded = velocity_f_.data();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
         for (int k = 0; k < D; ++k)
-            rounded[k][i] = float(state.velocity[i][k]);
+            rounded[4 * i + k] = float(state.velocity[i][k]);
 }
 
 template <int D>
 typename DfsphSolver<D>::SliceView DfsphSolver<D>::slice_view() const {
-    SliceView view{slice_start_.data(), slice_index_.data(), {}, {}};
-    for (int k = 0; k < D; ++k) {
+    SliceView view{slice_start_.data(), slice_index_.data(), {}, velocity_f_.data()};
+    for (int k = 0; k < D; ++k)
         view.gradient[k] = slice_gradient_[k].data();
-        view.velocity[k] = velocity_f_[k].data();
-    }
     return view;
 }
 
@@ -169,13 +203,8 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     for (int k = 0; k < D; ++k)
         slice_gradient[k] = slice_gradient_[k].data();
     const std::span<Vec<D>> wall_gradient = wall_gradient_, wall_sum = wall_sum_;
-    resize_with_headroom(density_f_, slices * slice_lanes);
-    float* density_f = density_f_.data();
-    std::array<float*, D> position_f;
-    for (int k = 0; k < D; ++k) {
-        resize_with_headroom(position_f_[k], slices * slice_lanes);
-        position_f[k] = position_f_[k].data();
-    }
+    resize_with_headroom(position_f_, 4 * slices * slice_lanes);
+    float* position_f = position_f_.data();
     // The same on every rank, so that a run's bits do not depend on the ranks.
     const Vec<D> origin = params.domain.min;
     const Real self = kernel_value_squared(kernel, Real(0));
@@ -224,7 +253,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                     kernel_value_squared(local_kernel, squared_length<D>(x_i - position[index[e]]));
         }
         for (int k = 0; k < D; ++k)
-            position_f[k][i] = float(x_i[k] - origin[k]);
+            position_f[4 * i + k] = float(x_i[k] - origin[k]);
         const std::size_t slice = i / slice_lanes, lane = i % slice_lanes;
         std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
         const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
@@ -295,14 +324,14 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         factor_[i] = S > tiny ? 1 / S : 0;
         if (summed)
             state.density[i] = mass * (self + kernel_sum) + params.rest_density * wall_kernel_sum;
-        density_f[i] = float(state.density[i]);
+        position_f[4 * i + 3] = float(state.density[i]);
     }
     timed.reset();
     // Over ranks: the halo's densities from their owners (the viscosities read them).
     if (context.halo) {
         context.share_halo_densities(state);
         for (std::size_t i = 0; i < n; ++i)
-            density_f[i] = float(state.density[i]);
+            position_f[4 * i + 3] = float(state.density[i]);
     }
 }
 
@@ -388,19 +417,19 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
             // sum_j g_ij . (v_i - v_j) for the slice's particles, one a lane,
             // component by component.
             const std::size_t first = slice * slice_lanes;
-            std::array<Lanes, D> v_i, pair_sum;
-            for (int k = 0; k < D; ++k) {
-                load_lanes(v_i[k], slices.velocity[k] + first);
-                pair_sum[k] = Lanes{};
-            }
+            std::array<Lanes, 4> v_i;
+            load_quads(v_i, slices.velocity, first);
+            std::array<Lanes, D> pair_sum{};
             for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice);
-                 at < end; at += slice_lanes)
+                 at < end; at += slice_lanes) {
+                std::array<Lanes, 4> v_j;
+                gather_quads(v_j, slices.velocity, slices.index + at);
                 for (int k = 0; k < D; ++k) {
-                    Lanes g, v_j;
+                    Lanes g;
                     load_lanes(g, slices.gradient[k] + at);
-                    gather_lanes(v_j, slices.velocity[k], slices.index + at);
-                    pair_sum[k] += g * (v_i[k] - v_j);
+                    pair_sum[k] += g * (v_i[k] - v_j[k]);
                 }
+            }
             Lanes pair_rate = pair_sum[0];
             for (int k = 1; k < D; ++k)
                 pair_rate += pair_sum[k];
@@ -500,9 +529,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
     const std::span<const Real> stiffness = stiffness_;
     const float* stiffness_f = stiffness_f_.data();
     const SliceView slices = slice_view();
-    std::array<float*, D> velocity_f; // written here
-    for (int k = 0; k < D; ++k)
-        velocity_f[k] = velocity_f_[k].data();
+    float* velocity_f = velocity_f_.data(); // written here
 #pragma omp parallel for schedule(dynamic, 32)
     for (std::size_t slice = 0; slice < slice_count(n); ++slice) {
         // sum_j (s_i + s_j) g_ij for the slice's particles, one a lane.
@@ -527,7 +554,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
                 dv[k] += pair_sum[k][i - first];
             state.velocity[i] -= dv;
             for (int k = 0; k < D; ++k)
-                velocity_f[k][i] = float(state.velocity[i][k]);
+                velocity_f[4 * i + k] = float(state.velocity[i][k]);
         }
     }
 }
@@ -545,36 +572,32 @@ SPHCLIP_CLONED void DfsphSolver<D>::add_fluid_viscosities(const MonaghanTerm<flo
                                                           State<D>& state) const {
     const std::size_t n = state.size();
     const SliceView slices = slice_view();
-    const float* density_f = density_f_.data();
-    std::array<const float*, D> position_f;
-    for (int k = 0; k < D; ++k)
-        position_f[k] = position_f_[k].data();
+    const float* position_f = position_f_.data();
 #pragma omp parallel for schedule(dynamic, 32)
     for (std::size_t slice = 0; slice < slice_count(n); ++slice) {
         const std::size_t first = slice * slice_lanes;
-        std::array<Lanes, D> x_i, v_i, along_g{}, along_v{};
-        Lanes rho_i;
-        for (int k = 0; k < D; ++k) {
-            load_lanes(x_i[k], position_f[k] + first);
-            load_lanes(v_i[k], slices.velocity[k] + first);
-        }
-        load_lanes(rho_i, density_f + first);
+        // (x_i, rho_i) and v_i, one a lane.
+        std::array<Lanes, 4> x_i, v_i;
+        load_quads(x_i, position_f, first);
+        load_quads(v_i, slices.velocity, first);
+        const Lanes rho_i = x_i[3];
+        std::array<Lanes, D> along_g{}, along_v{};
         for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice); at < end;
              at += slice_lanes) {
+            std::array<Lanes, 4> x_j, v_j;
+            gather_quads(x_j, position_f, slices.index + at);
+            gather_quads(v_j, slices.velocity, slices.index + at);
+            const Lanes rho_j = x_j[3];
             std::array<Lanes, D> x_ij, v_ij, g;
-            Lanes r2{}, v_dot_x{}, x_dot_g{}, rho_j;
+            Lanes r2{}, v_dot_x{}, x_dot_g{};
             for (int k = 0; k < D; ++k) {
-                Lanes other;
-                gather_lanes(other, position_f[k], slices.index + at);
-                x_ij[k] = x_i[k] - other;
-                gather_lanes(other, slices.velocity[k], slices.index + at);
-                v_ij[k] = v_i[k] - other;
+                x_ij[k] = x_i[k] - x_j[k];
+                v_ij[k] = v_i[k] - v_j[k];
                 load_lanes(g[k], slices.gradient[k] + at);
                 r2 += x_ij[k] * x_ij[k];
                 v_dot_x += v_ij[k] * x_ij[k];
                 x_dot_g += x_ij[k] * g[k];
             }
-            gather_lanes(rho_j, density_f, slices.index + at);
             if constexpr (artificial) {
                 Lanes Pi_ij;
                 Pi(v_dot_x, rho_i + rho_j, r2, Pi_ij);

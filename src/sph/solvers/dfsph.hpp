@@ -118,10 +118,10 @@ class DfsphSolver final : public Solver<D> {
     std::vector<std::uint32_t> slice_index_;           // j, per column and lane
     std::array<std::vector<float>, D> slice_gradient_; // g_ij = m grad W_ij, by component
     std::vector<Real> pair_factor_;                    // m W'(r) / r per pair, on the way
-    std::array<std::vector<float>, D> velocity_f_;     // v_i, rounded after each change
-    std::vector<float> stiffness_f_;                   // s_i of this iteration, rounded
-    std::array<std::vector<float>, D> position_f_;     // x_i - the domain's corner (viscosities)
-    std::vector<float> density_f_;                     // rho_i, for the viscosities
+    // Quads: four floats a particle, gathered whole (gather_quads in dfsph.cpp).
+    std::vector<float> velocity_f_;  // (v_i, 0), rounded after each change
+    std::vector<float> stiffness_f_; // s_i of this iteration, rounded
+    std::vector<float> position_f_;  // (x_i - the domain's corner, rho_i), for the viscosities
     template <bool artificial, bool laminar>
     void add_fluid_viscosities(const MonaghanTerm<float>& Pi, const MorrisViscosity::Single& morris,
                                State<D>& state) const;
@@ -132,7 +132,7 @@ class DfsphSolver final : public Solver<D> {
         const std::uint32_t* columns;         // slice_start_
         const std::uint32_t* index;           // slice_index_
         std::array<const float*, D> gradient; // slice_gradient_
-        std::array<const float*, D> velocity; // velocity_f_
+        const float* velocity;                // velocity_f_, quads
         // A slice's entries: [first_entry, end_entry) in steps of slice_lanes.
         std::size_t first_entry(std::size_t slice) const {
             return std::size_t(columns[slice]) * slice_lanes;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <numeric>
 #include <optional>
 #include <span>
 
@@ -106,15 +107,6 @@ SPHCLIP_INLINE_IN_CLONES void gather_quads(std::array<Lanes, 4>& out, const floa
     out[3] = __builtin_shufflevector(t1, t3, 2, 3, 10, 11, 6, 7, 14, 15);
 }
 
-// The same for the slice's own particles, first .. first + 7.
-SPHCLIP_INLINE_IN_CLONES void load_quads(std::array<Lanes, 4>& out, const float* quads,
-                                         std::size_t first) {
-    std::array<std::uint32_t, 8> index;
-    for (std::size_t l = 0; l < 8; ++l)
-        index[l] = std::uint32_t(first + l);
-    gather_quads(out, quads, index.data());
-}
-
 std::size_t slice_count(std::size_t n) {
     return (n + slice_lanes - 1) / slice_lanes;
 }
@@ -134,7 +126,8 @@ void DfsphSolver<D>::round_velocities(const State<D>& state) {
 
 template <int D>
 typename DfsphSolver<D>::SliceView DfsphSolver<D>::slice_view() const {
-    SliceView view{slice_start_.data(), slice_index_.data(), {}, velocity_f_.data()};
+    SliceView view{
+        slice_start_.data(), slice_row_.data(), slice_index_.data(), {}, velocity_f_.data()};
     for (int k = 0; k < D; ++k)
         view.gradient[k] = slice_gradient_[k].data();
     return view;
@@ -163,18 +156,39 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     source_.resize(n);
     residual_.resize(n);
     next_sum_.resize(n);
-    // The slices' columns: as many as the slice's longest row.
+    // The slices' rows, longest first within each window of
+    // window_slices slices (SELL-C-sigma), and their columns: as many as
+    // the slice's longest row, its first.
     {
         const NeighbourList& pairs = context.neighbours;
         slice_start_.resize(slices + 1);
+        resize_with_headroom(slice_row_, slices * slice_lanes);
         std::uint32_t* columns = slice_start_.data();
+        std::uint32_t* row = slice_row_.data();
+        const std::uint32_t* start = pairs.start.data();
+        const std::size_t window = window_slices * slice_lanes;
 #pragma omp parallel for schedule(static)
-        for (std::size_t slice = 0; slice < slices; ++slice) {
-            std::uint32_t longest = 0;
-            for (std::size_t i = slice * slice_lanes; i < std::min(n, (slice + 1) * slice_lanes);
-                 ++i)
-                longest = std::max(longest, pairs.start[i + 1] - pairs.start[i]);
-            columns[slice + 1] = longest;
+        for (std::size_t first = 0; first < slices * slice_lanes; first += window) {
+            const std::size_t last = std::min(n, first + window);
+            const auto length = [&](std::uint32_t i) {
+                return start[i + 1] - start[i];
+            };
+            // Sorted as keys (shortest last, ties in particle order: the
+            // same rows for any thread count): the row's length above its
+            // place in the window.
+            static_assert(window_slices * slice_lanes <= 256);
+            for (std::size_t at = first; at < last; ++at)
+                row[at] = (~length(std::uint32_t(at)) << 8) | std::uint32_t(at - first);
+            std::sort(row + first, row + last);
+            for (std::size_t at = first; at < last; ++at)
+                row[at] = std::uint32_t(first) + (row[at] & 0xff);
+            // The last slice's lanes past n: a particle's copy (finite
+            // values, g = 0 below, the results not kept).
+            const std::size_t window_end = std::min(slices * slice_lanes, first + window);
+            for (std::size_t at = last; at < window_end; ++at)
+                row[at] = row[n - 1];
+            for (std::size_t at = first; at < window_end; at += slice_lanes)
+                columns[at / slice_lanes + 1] = at < n ? length(row[at]) : 0;
         }
         columns[0] = 0;
         for (std::size_t slice = 0; slice < slices; ++slice)
@@ -184,6 +198,16 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         for (std::vector<float>& component : slice_gradient_)
             resize_with_headroom(component, entries);
         resize_with_headroom(pair_factor_, pairs.pair_count());
+        if (n % slice_lanes != 0) {
+            const std::size_t last = slices - 1;
+            for (std::size_t lane = n % slice_lanes; lane < slice_lanes; ++lane)
+                for (std::size_t at = std::size_t(columns[last]) * slice_lanes + lane;
+                     at < std::size_t(columns[last + 1]) * slice_lanes; at += slice_lanes) {
+                    slice_index_[at] = row[last * slice_lanes + lane];
+                    for (std::vector<float>& component : slice_gradient_)
+                        component[at] = 0;
+                }
+        }
     }
     resize_with_headroom(wall_gradient_,
                          (context.boundary ? context.boundary_neighbours.pair_count() : 0) +
@@ -209,9 +233,12 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     const Vec<D> origin = params.domain.min;
     const Real self = kernel_value_squared(kernel, Real(0));
     // Chunks of whole slices: a slice is written by one thread.
+    // In the slices' order, so that each slice's lanes are written in turn.
     static_assert(256 % slice_lanes == 0);
+    const std::uint32_t* row = slice_row_.data();
 #pragma omp parallel for schedule(dynamic, 256)
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t place = 0; place < n; ++place) {
+        const std::size_t i = row[place];
         const NeighbourList& pairs = context.neighbours;
         // Locals for what the loop reads (as in sum_over_pairs): through
         // references GCC 12 leaves this loop scalar.
@@ -254,7 +281,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         }
         for (int k = 0; k < D; ++k)
             position_f[4 * i + k] = float(x_i[k] - origin[k]);
-        const std::size_t slice = i / slice_lanes, lane = i % slice_lanes;
+        const std::size_t slice = place / slice_lanes, lane = place % slice_lanes;
         std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
         const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
         for (std::size_t e = begin; e < end; ++e, at += slice_lanes) {
@@ -418,7 +445,7 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
             // component by component.
             const std::size_t first = slice * slice_lanes;
             std::array<Lanes, 4> v_i;
-            load_quads(v_i, slices.velocity, first);
+            gather_quads(v_i, slices.velocity, slices.row + first);
             std::array<Lanes, D> pair_sum{};
             for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice);
                  at < end; at += slice_lanes) {
@@ -433,8 +460,9 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
             Lanes pair_rate = pair_sum[0];
             for (int k = 1; k < D; ++k)
                 pair_rate += pair_sum[k];
-            for (std::size_t i = first; i < std::min(n, first + slice_lanes); ++i) {
-                const Real rate_of_pairs = pair_rate[i - first];
+            for (std::size_t lane = 0; lane < slice_lanes && first + lane < n; ++lane) {
+                const std::size_t i = slices.row[first + lane];
+                const Real rate_of_pairs = pair_rate[lane];
                 Real rate = wall_mirror * glm::dot(wall_sum[i], state.velocity[i]) + rate_of_pairs;
                 if (!wall_motion_.empty())
                     rate -= wall_mirror * wall_motion_[i];
@@ -535,7 +563,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
         // sum_j (s_i + s_j) g_ij for the slice's particles, one a lane.
         const std::size_t first = slice * slice_lanes;
         Lanes s_i;
-        load_lanes(s_i, stiffness_f + first);
+        gather_lanes(s_i, stiffness_f, slices.row + first);
         std::array<Lanes, D> pair_sum{};
         for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice); at < end;
              at += slice_lanes) {
@@ -548,10 +576,11 @@ SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
                 pair_sum[k] += s_ij * g;
             }
         }
-        for (std::size_t i = first; i < std::min(n, first + slice_lanes); ++i) {
+        for (std::size_t lane = 0; lane < slice_lanes && first + lane < n; ++lane) {
+            const std::size_t i = slices.row[first + lane];
             Vec<D> dv = wall_mirror * stiffness[i] * wall_sum[i];
             for (int k = 0; k < D; ++k)
-                dv[k] += pair_sum[k][i - first];
+                dv[k] += pair_sum[k][lane];
             state.velocity[i] -= dv;
             for (int k = 0; k < D; ++k)
                 velocity_f[4 * i + k] = float(state.velocity[i][k]);
@@ -578,8 +607,8 @@ SPHCLIP_CLONED void DfsphSolver<D>::add_fluid_viscosities(const MonaghanTerm<flo
         const std::size_t first = slice * slice_lanes;
         // (x_i, rho_i) and v_i, one a lane.
         std::array<Lanes, 4> x_i, v_i;
-        load_quads(x_i, position_f, first);
-        load_quads(v_i, slices.velocity, first);
+        gather_quads(x_i, position_f, slices.row + first);
+        gather_quads(v_i, slices.velocity, slices.row + first);
         const Lanes rho_i = x_i[3];
         std::array<Lanes, D> along_g{}, along_v{};
         for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice); at < end;
@@ -611,11 +640,12 @@ SPHCLIP_CLONED void DfsphSolver<D>::add_fluid_viscosities(const MonaghanTerm<flo
                     along_v[k] += weight * v_ij[k];
             }
         }
-        for (std::size_t i = first; i < std::min(n, first + slice_lanes); ++i) {
+        for (std::size_t lane = 0; lane < slice_lanes && first + lane < n; ++lane) {
+            const std::size_t i = slices.row[first + lane];
             const Real viscous_scale = laminar ? morris.two_mu / state.density[i] : 0;
             for (int k = 0; k < D; ++k)
                 state.acceleration[i][k] +=
-                    -Real(along_g[k][i - first]) + viscous_scale * Real(along_v[k][i - first]);
+                    -Real(along_g[k][lane]) + viscous_scale * Real(along_v[k][lane]);
         }
     }
 }

@@ -158,7 +158,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     next_sum_.resize(n);
     // The slices' rows, longest first within each window of
     // window_slices slices (SELL-C-sigma), and their columns: as many as
-    // the slice's longest row, its first.
+    // the slice's longest row.
     {
         const NeighbourList& pairs = context.neighbours;
         slice_start_.resize(slices + 1);
@@ -177,18 +177,26 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             // same rows for any thread count): the row's length above its
             // place in the window.
             static_assert(window_slices * slice_lanes <= 256);
-            for (std::size_t at = first; at < last; ++at)
-                row[at] = (~length(std::uint32_t(at)) << 8) | std::uint32_t(at - first);
-            std::sort(row + first, row + last);
-            for (std::size_t at = first; at < last; ++at)
-                row[at] = std::uint32_t(first) + (row[at] & 0xff);
+            if (window_slices > 1) {
+                for (std::size_t at = first; at < last; ++at)
+                    row[at] = (~length(std::uint32_t(at)) << 8) | std::uint32_t(at - first);
+                std::sort(row + first, row + last);
+                for (std::size_t at = first; at < last; ++at)
+                    row[at] = std::uint32_t(first) + (row[at] & 0xff);
+            } else {
+                std::iota(row + first, row + last, std::uint32_t(first));
+            }
             // The last slice's lanes past n: a particle's copy (finite
             // values, g = 0 below, the results not kept).
             const std::size_t window_end = std::min(slices * slice_lanes, first + window);
             for (std::size_t at = last; at < window_end; ++at)
                 row[at] = row[n - 1];
-            for (std::size_t at = first; at < window_end; at += slice_lanes)
-                columns[at / slice_lanes + 1] = at < n ? length(row[at]) : 0;
+            for (std::size_t at = first; at < window_end; at += slice_lanes) {
+                std::uint32_t longest = 0; // the first, when sorted
+                for (std::size_t lane = at; lane < std::min(last, at + slice_lanes); ++lane)
+                    longest = std::max(longest, length(row[lane]));
+                columns[at / slice_lanes + 1] = longest;
+            }
         }
         columns[0] = 0;
         for (std::size_t slice = 0; slice < slices; ++slice)

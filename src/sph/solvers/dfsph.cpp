@@ -505,7 +505,10 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
                 // (tests/test_effects.cpp). In the density solve alone, a
                 // deep 3D tank at rest sloshed at 1.5 m/s.
                 const Real step = omega * source * factor_[i];
-                const Real carried = step * stiffness_[i] > 0 ? momentum * stiffness_[i] : 0;
+                // (momentum tested first: without it, a branch on the
+                // signs, which GCC makes of the select, mispredicts.)
+                const Real carried =
+                    momentum != 0 && step * stiffness_[i] > 0 ? momentum * stiffness_[i] : 0;
                 const Real updated = std::max(sum[i] + step + carried, Real(0));
                 stiffness_[i] = updated - sum[i];
                 stiffness_f[i] = float(stiffness_[i]);

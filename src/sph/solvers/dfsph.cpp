@@ -107,21 +107,49 @@ SPHCLIP_INLINE_IN_CLONES void gather_quads(std::array<Lanes, 4>& out, const floa
     out[3] = __builtin_shufflevector(t1, t3, 2, 3, 10, 11, 6, 7, 14, 15);
 }
 
+// The same for a slice's own particles, first .. first + 7, whose quads
+// are consecutive.
+SPHCLIP_INLINE_IN_CLONES void load_quads(std::array<Lanes, 4>& out, const float* quads,
+                                         std::size_t first) {
+    std::array<std::uint32_t, 8> index;
+    for (std::size_t l = 0; l < 8; ++l)
+        index[l] = std::uint32_t(first + l);
+    gather_quads(out, quads, index.data());
+}
+
 std::size_t slice_count(std::size_t n) {
     return (n + slice_lanes - 1) / slice_lanes;
 }
 } // namespace
 
 template <int D>
-void DfsphSolver<D>::round_velocities(const State<D>& state) {
+void DfsphSolver<D>::load_velocities(const State<D>& state) {
     const std::size_t n = state.size();
     // Whole slices: the lanes past the last particle read 0.
     resize_with_headroom(velocity_f_, 4 * slice_count(n) * slice_lanes);
     float* rounded = velocity_f_.data();
+    const std::uint32_t* row = slice_row_.data();
+    std::array<Real*, D> placed;
+    for (int k = 0; k < D; ++k) {
+        placed_velocity_[k].resize(n);
+        placed[k] = placed_velocity_[k].data();
+    }
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t place = 0; place < n; ++place)
+        for (int k = 0; k < D; ++k) {
+            placed[k][place] = state.velocity[row[place]][k];
+            rounded[4 * place + k] = float(placed[k][place]);
+        }
+}
+
+template <int D>
+void DfsphSolver<D>::store_velocities(State<D>& state) const {
+    const std::size_t n = state.size();
+    const std::uint32_t* row = slice_row_.data();
+#pragma omp parallel for schedule(static)
+    for (std::size_t place = 0; place < n; ++place)
         for (int k = 0; k < D; ++k)
-            rounded[4 * i + k] = float(state.velocity[i][k]);
+            state.velocity[row[place]][k] = placed_velocity_[k][place];
 }
 
 template <int D>
@@ -163,8 +191,10 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         const NeighbourList& pairs = context.neighbours;
         slice_start_.resize(slices + 1);
         resize_with_headroom(slice_row_, slices * slice_lanes);
+        slice_place_.resize(n);
         std::uint32_t* columns = slice_start_.data();
         std::uint32_t* row = slice_row_.data();
+        std::uint32_t* place_of = slice_place_.data();
         const std::uint32_t* start = pairs.start.data();
         const std::size_t window = window_slices * slice_lanes;
 #pragma omp parallel for schedule(static)
@@ -186,6 +216,8 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             } else {
                 std::iota(row + first, row + last, std::uint32_t(first));
             }
+            for (std::size_t at = first; at < last; ++at)
+                place_of[row[at]] = std::uint32_t(at);
             // The last slice's lanes past n: a particle's copy (finite
             // values, g = 0 below, the results not kept).
             const std::size_t window_end = std::min(slices * slice_lanes, first + window);
@@ -211,7 +243,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             for (std::size_t lane = n % slice_lanes; lane < slice_lanes; ++lane)
                 for (std::size_t at = std::size_t(columns[last]) * slice_lanes + lane;
                      at < std::size_t(columns[last + 1]) * slice_lanes; at += slice_lanes) {
-                    slice_index_[at] = row[last * slice_lanes + lane];
+                    slice_index_[at] = std::uint32_t(n - 1);
                     for (std::vector<float>& component : slice_gradient_)
                         component[at] = 0;
                 }
@@ -223,7 +255,8 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     // Moving walls: sum_b w_ib . v_b, fixed for the step (v_b is).
     const bool moving = context.boundary && context.boundary->has_moving();
     wall_motion_.resize(moving ? n : 0);
-    wall_sum_.resize(n);
+    for (std::vector<Real>& component : wall_sum_)
+        component.resize(n);
     // No particle is compressed below a fraction of this: with S_i under it
     // (an isolated particle) there is nothing to push against.
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
@@ -234,7 +267,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     std::array<float*, D> slice_gradient;
     for (int k = 0; k < D; ++k)
         slice_gradient[k] = slice_gradient_[k].data();
-    const std::span<Vec<D>> wall_gradient = wall_gradient_, wall_sum = wall_sum_;
+    const std::span<Vec<D>> wall_gradient = wall_gradient_;
     resize_with_headroom(position_f_, 4 * slices * slice_lanes);
     float* position_f = position_f_.data();
     // The same on every rank, so that a run's bits do not depend on the ranks.
@@ -244,6 +277,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     // In the slices' order, so that each slice's lanes are written in turn.
     static_assert(256 % slice_lanes == 0);
     const std::uint32_t* row = slice_row_.data();
+    const std::uint32_t* place_of = slice_place_.data();
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t place = 0; place < n; ++place) {
         const std::size_t i = row[place];
@@ -288,14 +322,14 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                     kernel_value_squared(local_kernel, squared_length<D>(x_i - position[index[e]]));
         }
         for (int k = 0; k < D; ++k)
-            position_f[4 * i + k] = float(x_i[k] - origin[k]);
+            position_f[4 * place + k] = float(x_i[k] - origin[k]);
         const std::size_t slice = place / slice_lanes, lane = place % slice_lanes;
         std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
         const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
         for (std::size_t e = begin; e < end; ++e, at += slice_lanes) {
             const std::uint32_t j = index[e];
             const Vec<D> x_ij = x_i - position[j];
-            slice_index[at] = j;
+            slice_index[at] = place_of[j];
             if constexpr (Kernel::smooth_at_origin) {
                 for (int k = 0; k < D; ++k)
                     slice_gradient[k][at] = float(factor[e] * x_ij[k]);
@@ -318,7 +352,7 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             sum = Vec<D>(sum_x, sum_y, sum_z);
         // The row's padding: g = 0 (the index in cache, and valid).
         for (; at < slice_end; at += slice_lanes) {
-            slice_index[at] = std::uint32_t(i);
+            slice_index[at] = std::uint32_t(place);
             for (int k = 0; k < D; ++k)
                 slice_gradient[k][at] = 0;
         }
@@ -348,25 +382,26 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             walls_sum = sum_over_pairs(
                 walls, i, [&](std::size_t e, std::uint32_t) { return wall_gradient[e]; });
             if (moving)
-                wall_motion_[i] = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
+                wall_motion_[place] = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
                     return glm::dot(wall_gradient[e], wall_velocity[b]);
                 });
         }
-        wall_sum[i] = walls_sum;
+        for (int k = 0; k < D; ++k)
+            wall_sum_[k][place] = walls_sum[k];
         // S_i = |G_f + 2 G_w|^2 + sum |g|^2 (the walls mirrored, above).
         const Vec<D> G = sum + wall_mirror * walls_sum;
         const Real S = glm::dot(G, G) + sum_squares;
-        factor_[i] = S > tiny ? 1 / S : 0;
+        factor_[place] = S > tiny ? 1 / S : 0;
         if (summed)
             state.density[i] = mass * (self + kernel_sum) + params.rest_density * wall_kernel_sum;
-        position_f[4 * i + 3] = float(state.density[i]);
+        position_f[4 * place + 3] = float(state.density[i]);
     }
     timed.reset();
     // Over ranks: the halo's densities from their owners (the viscosities read them).
     if (context.halo) {
         context.share_halo_densities(state);
-        for (std::size_t i = 0; i < n; ++i)
-            position_f[4 * i + 3] = float(state.density[i]);
+        for (std::size_t place = 0; place < n; ++place)
+            position_f[4 * place + 3] = float(state.density[row[place]]);
     }
 }
 
@@ -408,25 +443,40 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
     // the halo accelerations from incomplete neighbourhoods).
     // The floats the iterations read follow: correct_velocities rounds what
     // it changes, the halo's are rounded when they arrive.
+    // The solve works in the slices' order (its arrays by place, below);
+    // state.velocity is written back at its end.
     const auto share_velocities = [&] {
-        context.share_halo(state.velocity);
-        if (context.halo)
-            round_velocities(state);
+        if (context.halo) {
+            store_velocities(state);
+            context.share_halo(state.velocity);
+            load_velocities(state);
+        }
     };
+    const std::uint32_t* row = slice_row_.data();
     context.share_halo(state.velocity);
-    round_velocities(state);
+    load_velocities(state);
     velocity_at_start_ = state.velocity; // for a restart (below)
     if (settings.warm_start && previous.size() == n && scale > 0) {
 #pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
-            stiffness_[i] = state.density[i] < rho0 ? 0 : scale * previous[i];
-            stiffness_f_[i] = float(stiffness_[i]);
+        for (std::size_t place = 0; place < n; ++place) {
+            const std::size_t i = row[place];
+            stiffness_[place] = state.density[i] < rho0 ? 0 : scale * previous[i];
+            stiffness_f_[place] = float(stiffness_[place]);
         }
         correct_velocities(state);
         share_velocities();
         sum = stiffness_;
     } else {
         sum.assign(n, 0);
+    }
+    // The density solve's source less the rate, fixed for the solve.
+    compression_.resize(n);
+    if (target == Target::density) {
+#pragma omp parallel for schedule(static)
+        for (std::size_t place = 0; place < n; ++place)
+            compression_[place] = (state.density[row[place]] - rho0) / dt;
+    } else {
+        std::fill(compression_.begin(), compression_.end(), Real(0));
     }
     const Real particles = Real(context.total_particles(n));
     // A diverging iteration (the error grows instead of shrinking: particles
@@ -438,12 +488,27 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
     int restarts = 0;
     int iterations = 0;
     for (;;) {
-        const std::span<const Vec<D>> wall_sum = wall_sum_;
-        const std::span<float> stiffness_f = stiffness_f_;
+        // Local pointers for what the per-particle loop reads (through
+        // `this` GCC 12 keeps a loop scalar).
+        std::array<const Real*, D> wall_sum, velocity;
+        for (int k = 0; k < D; ++k) {
+            wall_sum[k] = wall_sum_[k].data();
+            velocity[k] = placed_velocity_[k].data();
+        }
+        const Real* wall_motion = wall_motion_.empty() ? nullptr : wall_motion_.data();
+        const Real* compression = compression_.data();
+        const Real* factor = factor_.data();
+        const Real* summed = sum.data();
+        Real* stiffness = stiffness_.data();
+        Real* next_sum = next_sum_.data();
+        Real* source_of = source_.data();
+        Real* residual = residual_.data();
+        float* stiffness_f = stiffness_f_.data();
         const SliceView slices = slice_view();
         // stiffness_ holds each particle's last step from the second pass
         // of a solve (or of a restart) on; before, the warm start's.
         const Real momentum = iterations > 0 && first_error >= 0 ? settings.momentum : Real(0);
+        const Real relaxation = omega;
         // The compression rate with the current velocities, and the source
         // each particle's stiffness answers: the predicted density error
         // (density solve) or the rate itself (divergence solve).
@@ -453,7 +518,7 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
             // component by component.
             const std::size_t first = slice * slice_lanes;
             std::array<Lanes, 4> v_i;
-            gather_quads(v_i, slices.velocity, slices.row + first);
+            load_quads(v_i, slices.velocity, first);
             std::array<Lanes, D> pair_sum{};
             for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice);
                  at < end; at += slice_lanes) {
@@ -468,18 +533,23 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
             Lanes pair_rate = pair_sum[0];
             for (int k = 1; k < D; ++k)
                 pair_rate += pair_sum[k];
-            for (std::size_t lane = 0; lane < slice_lanes && first + lane < n; ++lane) {
-                const std::size_t i = slices.row[first + lane];
-                const Real rate_of_pairs = pair_rate[lane];
-                Real rate = wall_mirror * glm::dot(wall_sum[i], state.velocity[i]) + rate_of_pairs;
-                if (!wall_motion_.empty())
-                    rate -= wall_mirror * wall_motion_[i];
-                const Real source =
-                    target == Target::density ? (state.density[i] - rho0) / dt + rate : rate;
-                source_[i] = source;
+            // The slice's particles, lane by lane in doubles (in a vector:
+            // their arrays are in the slices' order).
+            const std::size_t lanes = std::min(slice_lanes, n - first);
+#pragma omp simd
+            for (std::size_t lane = 0; lane < lanes; ++lane) {
+                const std::size_t place = first + lane;
+                Real walls = 0;
+                for (int k = 0; k < D; ++k)
+                    walls += wall_sum[k][place] * velocity[k][place];
+                Real rate = wall_mirror * walls + Real(pair_rate[lane]);
+                if (wall_motion)
+                    rate -= wall_mirror * wall_motion[place];
+                const Real source = compression[place] + rate;
+                source_of[place] = source;
                 // The residual of a pressure that must stay >= 0: compression
                 // anywhere, and expansion where there is pressure to give back.
-                residual_[i] = sum[i] > 0 ? std::abs(source) : std::max(source, Real(0));
+                residual[place] = summed[place] > 0 ? std::abs(source) : std::max(source, Real(0));
                 // Relaxed, projected Jacobi. Relaxed: the plain Jacobi update
                 // (the factor ignores how neighbours respond) overshoots and,
                 // with the 20-40 neighbours of our kernels, diverges in a deep
@@ -504,22 +574,21 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
                 // emitter's inflow stacked particles to 0.29 spacings
                 // (tests/test_effects.cpp). In the density solve alone, a
                 // deep 3D tank at rest sloshed at 1.5 m/s.
-                const Real step = omega * source * factor_[i];
-                // (momentum tested first: without it, a branch on the
-                // signs, which GCC makes of the select, mispredicts.)
+                const Real step = relaxation * source * factor[place];
                 const Real carried =
-                    momentum != 0 && step * stiffness_[i] > 0 ? momentum * stiffness_[i] : 0;
-                const Real updated = std::max(sum[i] + step + carried, Real(0));
-                stiffness_[i] = updated - sum[i];
-                stiffness_f[i] = float(stiffness_[i]);
-                next_sum_[i] = updated;
+                    step * stiffness[place] > 0 ? momentum * stiffness[place] : Real(0);
+                const Real updated = std::max(summed[place] + step + carried, Real(0));
+                stiffness[place] = updated - summed[place];
+                stiffness_f[place] = float(stiffness[place]);
+                next_sum[place] = updated;
             }
         }
         // Summed in particle order, not by an OpenMP reduction, so that the
         // iteration count, and so every bit, is the same for any thread
         // count, and over ranks for any rank count.
+        const std::uint32_t* place_of = slice_place_.data();
         const Real error_sum =
-            context.sum_in_particle_order(n, [&](std::size_t i) { return residual_[i]; });
+            context.sum_in_particle_order(n, [&](std::size_t i) { return residual[place_of[i]]; });
         // Mean relative density error (density) or density change within one
         // step (divergence): dt * mean(residual) / rho0 in both cases.
         const Real error = particles > 0 ? dt * error_sum / (particles * rho0) : 0;
@@ -530,7 +599,7 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
         } else if (error > 2 * first_error && error > tolerance && restarts < 4 &&
                    iterations < settings.max_iterations) {
             state.velocity = velocity_at_start_;
-            round_velocities(state);
+            load_velocities(state);
             sum.assign(n, 0);
             omega /= 2;
             first_error = -1;
@@ -543,15 +612,26 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
         sum.swap(next_sum_);
         // Over ranks the halo's stiffnesses, then its corrected velocities,
         // are their owners' (a halo particle's own source is incomplete).
-        context.share_halo(stiffness_);
-        if (context.halo)
-            for (std::size_t i = 0; i < n; ++i)
-                stiffness_f_[i] = float(stiffness_[i]);
+        if (context.halo) {
+            halo_scratch_.resize(n);
+            for (std::size_t place = 0; place < n; ++place)
+                halo_scratch_[row[place]] = stiffness_[place];
+            context.share_halo(halo_scratch_);
+            for (std::size_t place = 0; place < n; ++place) {
+                stiffness_[place] = halo_scratch_[row[place]];
+                stiffness_f_[place] = float(stiffness_[place]);
+            }
+        }
         correct_velocities(state);
         share_velocities();
         ++iterations;
     }
-    previous = sum;
+    // Back in the particles' order.
+    store_velocities(state);
+    previous.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t place = 0; place < n; ++place)
+        previous[row[place]] = sum[place];
     return iterations;
 }
 
@@ -562,19 +642,24 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
 // layer, leaves the bottom layer at twice the hydrostatic pressure).
 // Gather: each particle corrects only its own velocity.
 template <int D>
-SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
+SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(const State<D>& state) {
     const std::size_t n = state.size();
-    const std::span<const Vec<D>> wall_sum = wall_sum_;
-    const std::span<const Real> stiffness = stiffness_;
+    std::array<const Real*, D> wall_sum;
+    std::array<Real*, D> velocity; // written here, with its floats
+    for (int k = 0; k < D; ++k) {
+        wall_sum[k] = wall_sum_[k].data();
+        velocity[k] = placed_velocity_[k].data();
+    }
+    const Real* stiffness = stiffness_.data();
     const float* stiffness_f = stiffness_f_.data();
     const SliceView slices = slice_view();
-    float* velocity_f = velocity_f_.data(); // written here
+    float* velocity_f = velocity_f_.data();
 #pragma omp parallel for schedule(dynamic, 32)
     for (std::size_t slice = 0; slice < slice_count(n); ++slice) {
         // sum_j (s_i + s_j) g_ij for the slice's particles, one a lane.
         const std::size_t first = slice * slice_lanes;
         Lanes s_i;
-        gather_lanes(s_i, stiffness_f, slices.row + first);
+        load_lanes(s_i, stiffness_f + first);
         std::array<Lanes, D> pair_sum{};
         for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice); at < end;
              at += slice_lanes) {
@@ -587,14 +672,20 @@ SPHCLIP_CLONED void DfsphSolver<D>::correct_velocities(State<D>& state) {
                 pair_sum[k] += s_ij * g;
             }
         }
-        for (std::size_t lane = 0; lane < slice_lanes && first + lane < n; ++lane) {
-            const std::size_t i = slices.row[first + lane];
-            Vec<D> dv = wall_mirror * stiffness[i] * wall_sum[i];
-            for (int k = 0; k < D; ++k)
-                dv[k] += pair_sum[k][lane];
-            state.velocity[i] -= dv;
-            for (int k = 0; k < D; ++k)
-                velocity_f[4 * i + k] = float(state.velocity[i][k]);
+        // Out of the registers once (read lane by lane from the vectors
+        // themselves, GCC stored them to memory at every column).
+        std::array<std::array<float, slice_lanes>, D> pairs;
+        std::memcpy(pairs.data(), pair_sum.data(), sizeof pairs);
+        const std::size_t lanes = std::min(slice_lanes, n - first);
+#pragma omp simd
+        for (std::size_t lane = 0; lane < lanes; ++lane) {
+            const std::size_t place = first + lane;
+            for (int k = 0; k < D; ++k) {
+                const Real dv =
+                    wall_mirror * stiffness[place] * wall_sum[k][place] + Real(pairs[k][lane]);
+                velocity[k][place] -= dv;
+                velocity_f[4 * place + k] = float(velocity[k][place]);
+            }
         }
     }
 }
@@ -618,8 +709,8 @@ SPHCLIP_CLONED void DfsphSolver<D>::add_fluid_viscosities(const MonaghanTerm<flo
         const std::size_t first = slice * slice_lanes;
         // (x_i, rho_i) and v_i, one a lane.
         std::array<Lanes, 4> x_i, v_i;
-        gather_quads(x_i, position_f, slices.row + first);
-        gather_quads(v_i, slices.velocity, slices.row + first);
+        load_quads(x_i, position_f, first);
+        load_quads(v_i, slices.velocity, first);
         const Lanes rho_i = x_i[3];
         std::array<Lanes, D> along_g{}, along_v{};
         for (std::size_t at = slices.first_entry(slice), end = slices.end_entry(slice); at < end;
@@ -796,10 +887,13 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
     if (context.output_pressure) {
         auto timed = context.time(Stage::pressure_solve);
         const std::size_t n = state.size();
+        const std::uint32_t* row = slice_row_.data();
 #pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i)
-            state.pressure[i] =
-                state.density[i] * state.density[i] * (stiffness_sum_[i] + divergence_sum_[i]) / dt;
+        for (std::size_t place = 0; place < n; ++place) {
+            const std::size_t i = row[place];
+            state.pressure[i] = state.density[i] * state.density[i] *
+                                (stiffness_sum_[place] + divergence_sum_[place]) / dt;
+        }
     }
     // solver.density = carried: the continuity equation over the step
     // (after the pressure output, which is in this step's density),
@@ -809,9 +903,10 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
         auto timed = context.time(Stage::pressure_solve);
         const std::size_t n = state.size();
         const Real rho0 = params.rest_density;
+        const std::uint32_t* row = slice_row_.data();
 #pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i)
-            state.density[i] = rho0 + dt * source_[i];
+        for (std::size_t place = 0; place < n; ++place)
+            state.density[row[place]] = rho0 + dt * source_[place];
     }
     previous_dt_ = dt;
     // 5. Move; the boundaries keep the particles out as a last guard, behind

@@ -76,7 +76,8 @@ class DfsphSolver final : public Solver<D> {
                  State<D>& state);
     int solve(const Params<D>& params, Real dt, Target target, StepContext<D>& context,
               State<D>& state);
-    void correct_velocities(State<D>& state);
+    // Corrects placed_velocity_ (and its floats) with stiffness_.
+    void correct_velocities(const State<D>& state);
     // state.acceleration += the walls' hydrostatic pressure (solver.wall_pressure).
     void add_wall_weight(const Params<D>& params, const StepContext<D>& context,
                          State<D>& state) const;
@@ -86,13 +87,18 @@ class DfsphSolver final : public Solver<D> {
     KernelKind kernel_;
     Real last_density_error_pct_ = 0;
     // Arrays this solver alone needs, sized to the particles; they live here,
-    // not in State.
+    // not in State. Those of a step are in the slices' order (by place,
+    // slice_row_ below), so that the loops over a slice's particles read
+    // them whole; the kept ones are in the particles' order.
     // (units in dfsph.cpp)
-    std::vector<Real> factor_;         // 1 / S_i
-    std::vector<Real> stiffness_;      // s_i of this iteration
-    std::vector<Real> stiffness_sum_;  // s_i summed over the density solve
-    std::vector<Real> divergence_sum_; // s_i summed over the divergence solve
-    std::vector<Real> previous_stiffness_, previous_divergence_; // last step's sums
+    std::vector<Real> factor_;                         // 1 / S_i
+    std::vector<Real> stiffness_;                      // s_i of this iteration
+    std::vector<Real> stiffness_sum_;                  // s_i summed over the density solve
+    std::vector<Real> divergence_sum_;                 // s_i summed over the divergence solve
+    std::array<std::vector<Real>, D> placed_velocity_; // v_i during a solve, by component
+    std::vector<Real> compression_;  // (rho_i - rho0) / dt in the density solve, else 0
+    std::vector<Real> halo_scratch_; // s_i in the particles' order, over ranks
+    std::vector<Real> previous_stiffness_, previous_divergence_; // last step's sums (kept)
     const std::array<std::vector<Real>*, 2> kept_{&previous_stiffness_, &previous_divergence_};
     Real previous_dt_ = 0;
     std::vector<Real> permute_scratch_;
@@ -123,19 +129,22 @@ class DfsphSolver final : public Solver<D> {
     // In 2D, whose rows are short, the sort cost more than it saved (the
     // 2D water dam break 3% slower): there a slice is its own window.
     static constexpr std::size_t window_slices = D == 3 ? 4 : 1;
-    std::vector<std::uint32_t> slice_start_;           // first column of each slice, then the end
-    std::vector<std::uint32_t> slice_row_;             // the particle in each lane of each slice
-    std::vector<std::uint32_t> slice_index_;           // j, per column and lane
+    std::vector<std::uint32_t> slice_start_; // first column of each slice, then the end
+    std::vector<std::uint32_t> slice_row_;   // the particle at each place (lane of a slice)
+    std::vector<std::uint32_t> slice_place_; // each particle's place: j in slice_index_ is one
+    std::vector<std::uint32_t> slice_index_; // j's place, per column and lane
     std::array<std::vector<float>, D> slice_gradient_; // g_ij = m grad W_ij, by component
     std::vector<Real> pair_factor_;                    // m W'(r) / r per pair, on the way
-    // Quads: four floats a particle, gathered whole (gather_quads in dfsph.cpp).
+    // Quads: four floats a particle, gathered whole (gather_quads in dfsph.cpp); by place.
     std::vector<float> velocity_f_;  // (v_i, 0), rounded after each change
     std::vector<float> stiffness_f_; // s_i of this iteration, rounded
     std::vector<float> position_f_;  // (x_i - the domain's corner, rho_i), for the viscosities
     template <bool artificial, bool laminar>
     void add_fluid_viscosities(const MonaghanTerm<float>& Pi, const MorrisViscosity::Single& morris,
                                State<D>& state) const;
-    void round_velocities(const State<D>& state);
+    // state.velocity into placed_velocity_ and velocity_f_, and back.
+    void load_velocities(const State<D>& state);
+    void store_velocities(State<D>& state) const;
     // The slices as the pair loops read them: pointers, local to a loop
     // (through `this` GCC 12 keeps a loop scalar).
     struct SliceView {
@@ -159,7 +168,7 @@ class DfsphSolver final : public Solver<D> {
     // W_i = sum_b w_ib: the walls' whole part in the rate and the
     // correction, since both take the wall particles' v and s from the
     // fluid particle (one read a particle, not one a wall pair, per iteration).
-    std::vector<Vec<D>> wall_sum_;
+    std::array<std::vector<Real>, D> wall_sum_; // by component
 };
 
 } // namespace sph

@@ -103,7 +103,6 @@ class DfsphSolver final : public Solver<D> {
     Real previous_dt_ = 0;
     std::vector<Real> permute_scratch_;
     std::vector<Real> source_;                   // the compression rate to remove
-    std::vector<Real> residual_;                 // its part in the solve's error
     std::vector<Real> next_sum_;                 // the summed s_i after this iteration
     std::vector<Vec<D>> velocity_at_start_;      // to restart a diverging solve
     std::vector<Vec<D>> velocity_at_step_start_; // to redo a step in halves

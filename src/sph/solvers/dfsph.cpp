@@ -128,7 +128,7 @@ std::size_t slice_count(std::size_t n) {
 // one run of consecutive slices, the runs of equal entries (columns).
 // Runs, not chunks dealt out as threads come free: a thread then gathers
 // mostly the v_j and s_j it wrote itself, in its own core's cache, and
-// the solves ran 10-15% faster than with chunks of 32 slices (measured on
+// the solves ran 15-20% faster than with chunks of 32 slices (measured on
 // SPlisHSPlasH's dam break, docs/benchmarks.md "The solves' loads").
 auto thread_slices(const std::uint32_t* columns, std::size_t slices) {
     const auto threads = std::size_t(omp_get_num_threads());

@@ -52,6 +52,7 @@
 #error "cell_passes.hpp is included by the cell_passes_*.cpp variants only"
 #endif
 #include "sph/single_precision/single_passes.hpp"
+#include "sph/thread_runs.hpp"
 
 namespace sph::SPHCLIP_SIMD_VARIANT {
 
@@ -453,30 +454,13 @@ class CellPasses {
             const std::size_t count = cells_.cell_count();
             const std::size_t particles = cells_.sorted_count();
             // Each thread one run of consecutive cells, the runs of about
-            // as many particles, rather than cells dealt out 16 at a time:
-            // a thread then reads mostly what it wrote itself, from its own
-            // core's cache (as dfsph's solves, docs/benchmarks.md "The
-            // solves' loads").
+            // as many particles (sph/thread_runs.hpp), rather than cells
+            // dealt out 16 at a time.
 #pragma omp parallel
             {
-                const auto threads = std::size_t(omp_get_num_threads());
-                const auto thread = std::size_t(omp_get_thread_num());
-                const auto bound = [&](std::size_t t) {
-                    if (t >= threads)
-                        return count;
-                    const std::size_t wanted = particles * t / threads;
-                    std::size_t low = 0, high = count;
-                    while (low < high) {
-                        const std::size_t middle = (low + high) / 2;
-                        if (cells_.cell(middle).begin < wanted)
-                            low = middle + 1;
-                        else
-                            high = middle;
-                    }
-                    return low;
-                };
-                Buffers& b = buffers_[thread];
-                for (std::size_t c = bound(thread), end = bound(thread + 1); c < end; ++c) {
+                Buffers& b = buffers_[omp_get_thread_num()];
+                for (const std::size_t c : this_thread_run(
+                         count, particles, [&](std::size_t k) { return cells_.cell(k).begin; })) {
                     const Cell cell = cells_.cell(c);
                     if (!cell.has_fluid())
                         continue;

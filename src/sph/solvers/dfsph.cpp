@@ -6,6 +6,7 @@
 #include "sph/pair_direction.hpp"
 #include "sph/pressure_acceleration.hpp"
 #include "sph/solvers/density_with_walls.hpp"
+#include "sph/thread_runs.hpp"
 #include "sph/vector_clones.hpp"
 
 #include <algorithm>
@@ -13,9 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
-#include <omp.h>
 #include <optional>
-#include <ranges>
 #include <span>
 
 #if defined(__AVX2__)
@@ -124,23 +123,10 @@ std::size_t slice_count(std::size_t n) {
     return (n + slice_lanes - 1) / slice_lanes;
 }
 
-// The slices this thread of a parallel region takes in a pass over them:
-// one run of consecutive slices, the runs of equal entries (columns).
-// Runs, not chunks dealt out as threads come free: a thread then gathers
-// mostly the v_j and s_j it wrote itself, in its own core's cache, and
-// the solves ran 15-20% faster than with chunks of 32 slices (measured on
-// SPlisHSPlasH's dam break, docs/benchmarks.md "The solves' loads").
+// The slices this thread of a parallel region takes in a pass over them
+// (sph/thread_runs.hpp), the runs of equal entries (columns).
 auto thread_slices(const std::uint32_t* columns, std::size_t slices) {
-    const auto threads = std::size_t(omp_get_num_threads());
-    const auto thread = std::size_t(omp_get_thread_num());
-    const std::uint64_t entries = columns[slices];
-    const auto bound = [&](std::size_t t) {
-        if (t >= threads)
-            return slices;
-        const std::uint64_t wanted = entries * t / threads;
-        return std::size_t(std::lower_bound(columns, columns + slices, wanted) - columns);
-    };
-    return std::views::iota(bound(thread), bound(thread + 1));
+    return this_thread_run(slices, columns[slices], [=](std::size_t k) { return columns[k]; });
 }
 } // namespace
 

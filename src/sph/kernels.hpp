@@ -28,17 +28,20 @@ namespace sph {
 
 namespace detail {
 constexpr Real pi = std::numbers::pi_v<Real>;
-template <std::floating_point T>
+// T: a floating-point type, or a GCC vector of one.
+template <class T>
 T cube(T x) {
     return x * x * x;
 }
 // x^N as the loop y = 1; y *= x (N times) would give it, with the exponent
 // fixed at compile time: straight-line code, which a vectorised loop may
 // call (a loop inside keeps the caller's loop scalar).
-template <int N, std::floating_point T>
+template <int N, class T>
 T pow_int(T x) {
     if constexpr (N == 0)
         return 1;
+    else if constexpr (N == 1)
+        return x; // 1 x, exactly; and for a vector, which 1 is not
     else
         return pow_int<N - 1>(x) * x;
 }
@@ -113,31 +116,34 @@ struct CubicSpline {
         : h(T(support)), inverse_h(T(1 / support)),
           norm(T(D == 2 ? 40 / (7 * detail::pi * support * support)
                         : 8 / (detail::pi * detail::cube(support)))) {}
-    T W(T r) const {
-        const T q = r * inverse_h;
-        if (q >= 1)
-            return 0;
-        if (q <= T(0.5))
-            return norm * (6 * (q * q * q - q * q) + 1);
-        return norm * 2 * detail::cube(1 - q);
+    T W(T r) const { return W_each(r); }
+    T dW(T r) const { return dW_each(r); }
+    T dW_over_r(T r) const { return dW_over_r_each(r); }
+    // The same for one T or for each lane of a GCC vector of T at once
+    // (dfsph's pass over a slice): selects, not branches; a scalar still
+    // computes only the branch it takes.
+    template <class V>
+    V W_each(V r) const {
+        const V q = r * inverse_h;
+        return q >= 1 ? V{}
+                      : (q <= T(0.5) ? norm * (6 * (q * q * q - q * q) + 1)
+                                     : norm * 2 * detail::cube(1 - q));
     }
-    T dW(T r) const {
-        const T q = r * inverse_h;
-        if (q >= 1)
-            return 0;
-        if (q <= T(0.5))
-            return norm * 6 * (3 * q * q - 2 * q) * inverse_h;
-        return -norm * 6 * (1 - q) * (1 - q) * inverse_h;
+    template <class V>
+    V dW_each(V r) const {
+        const V q = r * inverse_h;
+        return q >= 1 ? V{}
+                      : (q <= T(0.5) ? norm * 6 * (3 * q * q - 2 * q) * inverse_h
+                                     : -norm * 6 * (1 - q) * (1 - q) * inverse_h);
     }
     // q / r = 1 / h: the inner part is 6 (3 q - 2) / h^2, the outer part
     // still needs 1 / r.
-    T dW_over_r(T r) const {
-        const T q = r * inverse_h;
-        if (q >= 1)
-            return 0;
-        if (q <= T(0.5))
-            return norm * 6 * (3 * q - 2) * inverse_h * inverse_h;
-        return dW(r) / r;
+    template <class V>
+    V dW_over_r_each(V r) const {
+        const V q = r * inverse_h;
+        return q >= 1 ? V{}
+                      : (q <= T(0.5) ? norm * 6 * (3 * q - 2) * inverse_h * inverse_h
+                                     : dW_each(r) / r);
     }
     Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
 };
@@ -154,16 +160,21 @@ struct WendlandC2 {
         : h(T(support)), inverse_h(T(1 / support)),
           norm(T(D == 2 ? 7 / (detail::pi * support * support)
                         : 21 / (2 * detail::pi * detail::cube(support)))) {}
-    T W(T r) const {
-        const T q = r * inverse_h;
-        return q < 1 ? norm * detail::pow_int<4>(1 - q) * (1 + 4 * q) : 0;
-    }
+    T W(T r) const { return W_each(r); }
     // d/dr of (1-q)^4 (1+4q) = -20 q (1-q)^3 / h
     T dW(T r) const { return r * dW_over_r(r); }
+    T dW_over_r(T r) const { return dW_over_r_each(r); }
+    // For one T or each lane of a vector of T, as in CubicSpline.
+    template <class V>
+    V W_each(V r) const {
+        const V q = r * inverse_h;
+        return q < 1 ? norm * detail::pow_int<4>(1 - q) * (1 + 4 * q) : V{};
+    }
     // q / r = 1 / h: no division at all.
-    T dW_over_r(T r) const {
-        const T q = r * inverse_h;
-        return q < 1 ? -20 * norm * inverse_h * inverse_h * detail::cube(1 - q) : 0;
+    template <class V>
+    V dW_over_r_each(V r) const {
+        const V q = r * inverse_h;
+        return q < 1 ? -20 * norm * inverse_h * inverse_h * detail::cube(1 - q) : V{};
     }
     Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
 };

@@ -119,6 +119,31 @@ SPHCLIP_INLINE_IN_CLONES void load_quads(std::array<Lanes, 4>& out, const float*
     gather_quads(out, quads, index.data());
 }
 
+// Per lane: doubles, and the counts a slice's lanes compare.
+using Doubles = double __attribute__((vector_size(8 * slice_lanes)));
+using Counts = std::uint32_t __attribute__((vector_size(4 * slice_lanes)));
+
+// Lanes of 64-bit integers: the masks of Doubles.
+using Wide = std::int64_t __attribute__((vector_size(8 * slice_lanes)));
+
+// out = the lanes' square roots (one vector instruction where there is one).
+SPHCLIP_INLINE_IN_CLONES void square_roots(Doubles& out, const Doubles& in) {
+#if defined(__AVX512F__)
+    // Masked, all lanes on: the unmasked intrinsic sets off GCC 12's
+    // -Wmaybe-uninitialized.
+    out = Doubles(_mm512_mask_sqrt_pd(__m512d(in), 0xff, __m512d(in)));
+#elif defined(__AVX__)
+    using Half = double __attribute__((vector_size(32)));
+    const Half low = _mm256_sqrt_pd(__m256d(__builtin_shufflevector(in, in, 0, 1, 2, 3)));
+    const Half high = _mm256_sqrt_pd(__m256d(__builtin_shufflevector(in, in, 4, 5, 6, 7)));
+    out = __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
+    out = in;
+    for (std::size_t l = 0; l < slice_lanes; ++l)
+        out[l] = std::sqrt(out[l]);
+#endif
+}
+
 std::size_t slice_count(std::size_t n) {
     return (n + slice_lanes - 1) / slice_lanes;
 }
@@ -244,7 +269,6 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         resize_with_headroom(slice_index_, entries);
         for (std::vector<float>& component : slice_gradient_)
             resize_with_headroom(component, entries);
-        resize_with_headroom(pair_factor_, pairs.pair_count());
         if (n % slice_lanes != 0) {
             const std::size_t last = slices - 1;
             for (std::size_t lane = n % slice_lanes; lane < slice_lanes; ++lane)
@@ -269,7 +293,6 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     const Real tiny = 1e-9 * params.rest_density * params.rest_density / (params.h * params.h);
     // Local spans, not the members: loops that read members through `this`
     // stay scalar.
-    const std::span<Real> pair_factor = pair_factor_;
     const std::span<std::uint32_t> slice_index = slice_index_;
     std::array<float*, D> slice_gradient;
     for (int k = 0; k < D; ++k)
@@ -280,89 +303,17 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
     // The same on every rank, so that a run's bits do not depend on the ranks.
     const Vec<D> origin = params.domain.min;
     const Real self = kernel_value_squared(kernel, Real(0));
-    // Chunks of whole slices: a slice is written by one thread.
-    // In the slices' order, so that each slice's lanes are written in turn.
-    static_assert(256 % slice_lanes == 0);
     const std::uint32_t* row = slice_row_.data();
     const std::uint32_t* place_of = slice_place_.data();
-#pragma omp parallel for schedule(dynamic, 256)
-    for (std::size_t place = 0; place < n; ++place) {
+    const std::uint32_t* columns = slice_start_.data();
+    // A particle's walls and its results, once its fluid pairs are summed:
+    // kernel_sum = sum_j W_ij, sum = sum_j g_ij, squares = sum_j |g_ij|^2.
+    const auto finish = [&](std::size_t place, Real kernel_sum, const Vec<D>& sum, Real squares) {
         const std::size_t i = row[place];
-        const NeighbourList& pairs = context.neighbours;
-        // Locals for what the loop reads (as in sum_over_pairs): through
-        // references GCC 12 leaves this loop scalar.
-        const std::size_t begin = pairs.start[i], end = pairs.start[i + 1];
-        const std::uint32_t* index = pairs.index.data();
-        const Vec<D>* position = state.position.data();
-        const Vec<D> x_i = position[i];
-        const Real mass = params.mass;
+        const Vec<D> x_i = state.position[i];
         const Kernel local_kernel = kernel;
-        // g_ij into its slice (lane i % slice_lanes of columns 0, 1, ...),
-        // with the sums of the rounded values, which the iterations use.
-        Real* factor = pair_factor.data();
-        // sum_j W_ij, for a summed density (Akinci et al. 2012, eq. 6, with
-        // the walls' share below): rho_i = m (W(0) + sum_j W_ij) + rho0 sum_b V_b W_ib.
-        Real kernel_sum = 0;
-        // The sums of the row's g_ij for the factor S_i (in double, before
-        // their rounding to floats: a diagonal preconditioner, which that
-        // rounding does not change to speak of).
-        Real sum_x = 0, sum_y = 0, sum_z = 0, sum_squares = 0;
-        if constexpr (Kernel::smooth_at_origin) {
-            // m W'(r) / r first, in a loop that vectorises (the square root
-            // and the kernel); the stores into the slice keep a loop scalar.
-#pragma omp simd reduction(+ : kernel_sum, sum_x, sum_y, sum_z, sum_squares)
-            for (std::size_t e = begin; e < end; ++e) {
-                const Vec<D> x_ij = x_i - position[index[e]];
-                const Real r2 = squared_length<D>(x_ij);
-                const Real f = mass * local_kernel.dW_over_r(std::sqrt(r2));
-                factor[e] = f;
-                kernel_sum += kernel_value_squared(local_kernel, r2);
-                sum_x += f * x_ij[0];
-                sum_y += f * x_ij[1];
-                if constexpr (D == 3)
-                    sum_z += f * x_ij[D - 1];
-                sum_squares += f * f * r2;
-            }
-        } else {
-            for (std::size_t e = begin; e < end; ++e)
-                kernel_sum +=
-                    kernel_value_squared(local_kernel, squared_length<D>(x_i - position[index[e]]));
-        }
         for (int k = 0; k < D; ++k)
             position_f[4 * place + k] = float(x_i[k] - origin[k]);
-        const std::size_t slice = place / slice_lanes, lane = place % slice_lanes;
-        std::size_t at = std::size_t(slice_start_[slice]) * slice_lanes + lane;
-        const std::size_t slice_end = std::size_t(slice_start_[slice + 1]) * slice_lanes + lane;
-        for (std::size_t e = begin; e < end; ++e, at += slice_lanes) {
-            const std::uint32_t j = index[e];
-            const Vec<D> x_ij = x_i - position[j];
-            slice_index[at] = place_of[j];
-            if constexpr (Kernel::smooth_at_origin) {
-                for (int k = 0; k < D; ++k)
-                    slice_gradient[k][at] = float(factor[e] * x_ij[k]);
-            } else {
-                const Vec<D> g = mass * pair_gradient(local_kernel, state, i, j, x_ij,
-                                                      std::sqrt(squared_length<D>(x_ij)));
-                for (int k = 0; k < D; ++k)
-                    slice_gradient[k][at] = float(g[k]);
-                sum_x += g[0];
-                sum_y += g[1];
-                if constexpr (D == 3)
-                    sum_z += g[D - 1];
-                sum_squares += squared_length<D>(g);
-            }
-        }
-        Vec<D> sum;
-        if constexpr (D == 2)
-            sum = Vec<D>(sum_x, sum_y);
-        else
-            sum = Vec<D>(sum_x, sum_y, sum_z);
-        // The row's padding: g = 0 (the index in cache, and valid).
-        for (; at < slice_end; at += slice_lanes) {
-            slice_index[at] = std::uint32_t(place);
-            for (int k = 0; k < D; ++k)
-                slice_gradient[k][at] = 0;
-        }
         Vec<D> walls_sum(0);
         Real wall_kernel_sum = 0; // sum_b V_b W_ib
         if (context.boundary) {
@@ -373,6 +324,8 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
             const std::size_t wall_begin = walls.start[i], wall_end = walls.start[i + 1];
             const std::uint32_t* wall_index = walls.index.data();
             const Real rho0 = params.rest_density;
+            // A local copy: through the closure GCC 12 keeps the loop scalar.
+            const std::span<Vec<D>> gradient = wall_gradient;
 #pragma omp simd reduction(+ : wall_kernel_sum)
             for (std::size_t e = wall_begin; e < wall_end; ++e) {
                 const std::uint32_t b = wall_index[e];
@@ -383,25 +336,156 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                 // Component by component: a whole vector assigned is a copy
                 // through memory that keeps the loop scalar (GCC 12).
                 for (int k = 0; k < D; ++k)
-                    wall_gradient[e][k] = w[k];
+                    gradient[e][k] = w[k];
                 wall_kernel_sum += volume[b] * kernel_value_squared(local_kernel, r2);
             }
-            walls_sum = sum_over_pairs(
-                walls, i, [&](std::size_t e, std::uint32_t) { return wall_gradient[e]; });
+            walls_sum =
+                sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t) { return gradient[e]; });
             if (moving)
                 wall_motion_[place] = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
-                    return glm::dot(wall_gradient[e], wall_velocity[b]);
+                    return glm::dot(gradient[e], wall_velocity[b]);
                 });
         }
         for (int k = 0; k < D; ++k)
             wall_sum_[k][place] = walls_sum[k];
         // S_i = |G_f + 2 G_w|^2 + sum |g|^2 (the walls mirrored, above).
         const Vec<D> G = sum + wall_mirror * walls_sum;
-        const Real S = glm::dot(G, G) + sum_squares;
+        const Real S = glm::dot(G, G) + squares;
         factor_[place] = S > tiny ? 1 / S : 0;
         if (summed)
-            state.density[i] = mass * (self + kernel_sum) + params.rest_density * wall_kernel_sum;
+            state.density[i] =
+                params.mass * (self + kernel_sum) + params.rest_density * wall_kernel_sum;
         position_f[4 * place + 3] = float(state.density[i]);
+    };
+    if constexpr (requires { typename Kernel::Single; }) {
+        // A slice at a time, its particles' rows side by side, one to a
+        // lane: column c of the slice is the lanes' c-th pairs, written
+        // whole, and each lane sums its own row (in its order: the same
+        // bits for any thread count). x_ij, r, W_ij and the sums in double;
+        // g_ij's kernel in floats, as the iterations read g_ij. Against a
+        // particle at a time (a vectorised loop over its row, then its
+        // entries stored one by one), the density pass 9-12% faster on
+        // SPlisHSPlasH's dam break (docs/benchmarks.md).
+        const typename Kernel::Single kernel_f(Real(kernel.h));
+        const float mass = float(params.mass);
+        const std::uint32_t* start = context.neighbours.start.data();
+        const std::uint32_t* index = context.neighbours.index.data();
+        const Vec<D>* position = state.position.data();
+        std::uint32_t* placed_index = slice_index.data();
+        // 32 slices a chunk: a slice's columns are written by one thread.
+#pragma omp parallel for schedule(dynamic, 32)
+        for (std::size_t slice = 0; slice < slices; ++slice) {
+            const Kernel local_kernel = kernel;
+            const std::size_t first = slice * slice_lanes;
+            // Each lane's row; the lanes past n (the last slice's) have
+            // none, and their own place is n - 1's.
+            std::array<std::size_t, slice_lanes> begin;
+            Counts length{};
+            Counts own_place{}, own{};
+            // (Lanes set one at a time through plain arrays: into vectors
+            // GCC 12 warns of their use uninitialised.)
+            double lanes_x[D][slice_lanes];
+            for (std::size_t l = 0; l < slice_lanes; ++l) {
+                const std::size_t place = first + l, i = row[place];
+                begin[l] = start[i];
+                length[l] = place < n ? start[i + 1] - start[i] : 0;
+                own_place[l] = std::uint32_t(std::min(place, n - 1));
+                own[l] = std::uint32_t(i);
+                for (int k = 0; k < D; ++k)
+                    lanes_x[k][l] = position[i][k];
+            }
+            std::array<Doubles, D> x_i;
+            std::memcpy(x_i.data(), lanes_x, sizeof lanes_x);
+            Doubles kernel_sum{}, squares{};
+            std::array<Doubles, D> sum{};
+            const std::uint32_t column_count = columns[slice + 1] - columns[slice];
+            std::size_t at = std::size_t(columns[slice]) * slice_lanes;
+            for (std::uint32_t c = 0; c < column_count; ++c, at += slice_lanes) {
+                // A lane past its row's end pairs its particle with
+                // itself: x_ij = 0, and g = 0 below.
+                const Counts active = c < length;
+                Counts placed{};
+                std::array<std::uint32_t, slice_lanes> j;
+                for (std::size_t l = 0; l < slice_lanes; ++l) {
+                    j[l] = active[l] ? index[begin[l] + c] : own[l];
+                    placed[l] = active[l] ? place_of[j[l]] : own_place[l];
+                }
+                static_assert(slice_lanes == 8);
+                std::array<Doubles, D> x_j;
+                for (int k = 0; k < D; ++k)
+                    x_j[k] = Doubles{position[j[0]][k], position[j[1]][k], position[j[2]][k],
+                                     position[j[3]][k], position[j[4]][k], position[j[5]][k],
+                                     position[j[6]][k], position[j[7]][k]};
+                std::memcpy(placed_index + at, &placed, sizeof placed);
+                // r and the density's W in double: rounded to floats, a
+                // change of 1e-12 m in a position could move rho by 1e-7
+                // of itself, which the solves then amplify (two runs that
+                // differ in their particles' order came out 20x farther
+                // apart, tests/test_reorder.cpp).
+                std::array<Lanes, D> x_ij;
+                Doubles r2{};
+                for (int k = 0; k < D; ++k) {
+                    const Doubles x = x_i[k] - x_j[k];
+                    x_ij[k] = __builtin_convertvector(x, Lanes);
+                    r2 += x * x;
+                }
+                Doubles r;
+                square_roots(r, r2);
+                kernel_sum +=
+                    __builtin_convertvector(active, Wide) ? local_kernel.W_each(r) : Doubles{};
+                const Lanes f =
+                    active ? mass * kernel_f.dW_over_r_each(__builtin_convertvector(r, Lanes))
+                           : Lanes{};
+                Lanes g2{};
+                for (int k = 0; k < D; ++k) {
+                    const Lanes g = f * x_ij[k];
+                    std::memcpy(slice_gradient[k] + at, &g, sizeof g);
+                    sum[k] += __builtin_convertvector(g, Doubles);
+                    g2 += g * g;
+                }
+                squares += __builtin_convertvector(g2, Doubles);
+            }
+            for (std::size_t l = 0; l < slice_lanes && first + l < n; ++l) {
+                Vec<D> row_sum;
+                for (int k = 0; k < D; ++k)
+                    row_sum[k] = sum[k][l];
+                finish(first + l, kernel_sum[l], row_sum, squares[l]);
+            }
+        }
+    } else {
+        // The seed's kernel (its gradient is not smooth at r = 0): a
+        // particle at a time, in double.
+#pragma omp parallel for schedule(dynamic, 256)
+        for (std::size_t place = 0; place < n; ++place) {
+            const std::size_t i = row[place];
+            const NeighbourList& pairs = context.neighbours;
+            const Vec<D> x_i = state.position[i];
+            Real kernel_sum = 0, squares = 0;
+            Vec<D> sum(0);
+            const std::size_t slice = place / slice_lanes, lane = place % slice_lanes;
+            std::size_t at = std::size_t(columns[slice]) * slice_lanes + lane;
+            const std::size_t slice_end = std::size_t(columns[slice + 1]) * slice_lanes + lane;
+            for (std::size_t e = pairs.start[i]; e < pairs.start[i + 1]; ++e, at += slice_lanes) {
+                const std::uint32_t j = pairs.index[e];
+                const Vec<D> x_ij = x_i - state.position[j];
+                const Real r2 = squared_length<D>(x_ij);
+                kernel_sum += kernel_value_squared(kernel, r2);
+                const Vec<D> g =
+                    params.mass * pair_gradient(kernel, state, i, j, x_ij, std::sqrt(r2));
+                slice_index[at] = place_of[j];
+                for (int k = 0; k < D; ++k)
+                    slice_gradient[k][at] = float(g[k]);
+                sum += g;
+                squares += squared_length<D>(g);
+            }
+            // The row's padding: g = 0 (the index in cache, and valid).
+            for (; at < slice_end; at += slice_lanes) {
+                slice_index[at] = std::uint32_t(place);
+                for (int k = 0; k < D; ++k)
+                    slice_gradient[k][at] = 0;
+            }
+            finish(place, kernel_sum, sum, squares);
+        }
     }
     timed.reset();
     // Over ranks: the halo's densities from their owners (the viscosities read them).

@@ -133,7 +133,6 @@ class DfsphSolver final : public Solver<D> {
     std::vector<std::uint32_t> slice_place_; // each particle's place: j in slice_index_ is one
     std::vector<std::uint32_t> slice_index_; // j's place, per column and lane
     std::array<std::vector<float>, D> slice_gradient_; // g_ij = m grad W_ij, by component
-    std::vector<Real> pair_factor_;                    // m W'(r) / r per pair, on the way
     // Quads: four floats a particle, gathered whole (gather_quads in dfsph.cpp); by place.
     std::vector<float> velocity_f_;  // (v_i, 0), rounded after each change
     std::vector<float> stiffness_f_; // s_i of this iteration, rounded

@@ -3,6 +3,7 @@
 #include "sph/assert.hpp"
 #include "sph/headroom.hpp"
 #include "sph/lattice.hpp"
+#include "sph/neighbours/distance_filter.hpp"
 #include "sph/vector_clones.hpp"
 
 #include <algorithm>
@@ -105,6 +106,30 @@ std::size_t BoundaryParticles<D>::collect_in(const Grid& grid, const Vec<D>& x,
             to[count] = b;
             count += squared_length<D>(x - positions_[b]) < r2;
         }
+    });
+    return count;
+}
+
+template <int D>
+std::size_t BoundaryParticles<D>::collect_static(const Vec<D>& x, std::vector<std::uint32_t>& out,
+                                                 std::vector<Real>& distance2,
+                                                 std::size_t count) const {
+    const Real r2 = h_ * h_;
+    constexpr std::uint32_t nobody = std::numeric_limits<std::uint32_t>::max();
+    for_each_row_in(grid_, x, [&](std::uint32_t begin, std::uint32_t end) {
+        const std::size_t length = end - begin;
+        if (out.size() < count + length)
+            out.resize(std::max(2 * out.size(), count + length));
+        if (distance2.size() < length)
+            distance2.resize(2 * length);
+        if constexpr (D == 2)
+            squared_distances(length, static_x_[0].data() + begin, static_x_[1].data() + begin,
+                              x[0], x[1], distance2.data());
+        else
+            squared_distances(length, static_x_[0].data() + begin, static_x_[1].data() + begin,
+                              static_x_[2].data() + begin, x[0], x[1], x[2], distance2.data());
+        count += select_neighbours(length, distance2.data(), static_index_.data() + begin, r2,
+                                   nobody, out.data() + count);
     });
     return count;
 }
@@ -224,6 +249,9 @@ std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> 
     else if (n > 0)
         bounds_ = bounding_box<D>(positions);
     if (n == 0) {
+        for (std::vector<Real>& component : static_x_)
+            component.clear();
+        static_index_.clear();
         grid_.cell_start.assign(2, 0);
         for (int a = 0; a < D; ++a)
             grid_.cells[a] = 1;
@@ -265,6 +293,13 @@ std::vector<std::uint32_t> BoundaryParticles<D>::build_grid(std::vector<Vec<D>> 
         destination[b] = next[cell[b]]++;
         positions_[destination[b]] = positions[b];
     }
+    for (int a = 0; a < D; ++a) {
+        static_x_[a].resize(n);
+        for (std::size_t b = 0; b < n; ++b)
+            static_x_[a][b] = positions_[b][a];
+    }
+    static_index_.resize(n);
+    std::iota(static_index_.begin(), static_index_.end(), 0u);
     mark_near_cells(grid_);
     return destination;
 }
@@ -355,6 +390,8 @@ void BoundaryParticles<D>::replace_static(BoundaryParticles&& other) {
     volumes_ = std::move(other.volumes_);
     velocities_ = std::move(other.velocities_);
     grid_ = std::move(other.grid_);
+    static_x_ = std::move(other.static_x_);
+    static_index_ = std::move(other.static_index_);
     bounds_ = other.bounds_;
     moving_begin_ = positions_.size();
     positions_.insert(positions_.end(), positions.begin(), positions.end());
@@ -481,6 +518,7 @@ SPHCLIP_CLONED void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>
     if (block_rows_.size() < blocks) {
         block_rows_.resize(blocks);
         block_counts_.resize(blocks);
+        block_distance2_.resize(blocks);
     }
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t k = 0; k < blocks; ++k) {
@@ -490,7 +528,7 @@ SPHCLIP_CLONED void BoundaryParticles<D>::find_neighbours(std::span<const Vec<D>
         std::size_t count = 0;
         for (std::size_t i = k * block, end = std::min(n, i + block); i < end; ++i) {
             const std::size_t before = count;
-            count = collect_in<false>(grid_, query[i], rows, count);
+            count = collect_static(query[i], rows, block_distance2_[k], count);
             if (has_moving())
                 count = collect_in<true>(moving_grid_, query[i], rows, count);
             out.start[i + 1] = static_cast<std::uint32_t>(count - before);

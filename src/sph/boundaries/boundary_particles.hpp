@@ -16,6 +16,7 @@
 #include "sph/select_in_order.hpp"
 #include "sph/vec.hpp"
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -137,6 +138,11 @@ class BoundaryParticles {
     template <bool Moving>
     std::size_t collect_in(const Grid& grid, const Vec<D>& x, std::vector<std::uint32_t>& out,
                            std::size_t count) const;
+    // collect_in for the static grid, each row of cells through the
+    // vectorised distance filter (sph/neighbours/distance_filter.hpp);
+    // distance2 is its scratch.
+    std::size_t collect_static(const Vec<D>& x, std::vector<std::uint32_t>& out,
+                               std::vector<Real>& distance2, std::size_t count) const;
     // visit_row(begin, end) for each row of 3 (or fewer) cells along x
     // around x's cell: the entries begin..end of `grid`.
     template <class VisitRow>
@@ -150,7 +156,11 @@ class BoundaryParticles {
     std::vector<Vec<D>> positions_; // static ones sorted by cell, then moving ones
     std::vector<Real> volumes_;     // m^3 (m^2 in 2D)
     Real h_ = 0;
-    Grid grid_;                           // the static particles, built once
+    Grid grid_; // the static particles, built once
+    // The static particles' positions by component, and their indices, as
+    // the distance filter reads them.
+    std::array<std::vector<Real>, D> static_x_;
+    std::vector<std::uint32_t> static_index_;
     Box<D> bounds_{Vec<D>(1), Vec<D>(0)}; // the whole static set's box
     std::vector<Vec<D>> velocities_;      // m/s, 0 for the static ones
     // Moving particles: where they are at rest, their group, and their own
@@ -165,8 +175,9 @@ class BoundaryParticles {
     // Scratch of find_neighbours(): a block of query rows' walls each, as
     // much memory as the lists it fills (it runs one call at a time).
     mutable std::vector<std::vector<std::uint32_t>> block_rows_;
-    mutable std::vector<std::size_t> block_counts_; // entries of block_rows_ in use
-    mutable SelectInOrder within_;                  // scratch of within()
+    mutable std::vector<std::size_t> block_counts_;          // entries of block_rows_ in use
+    mutable std::vector<std::vector<Real>> block_distance2_; // collect_static's scratch
+    mutable SelectInOrder within_;                           // scratch of within()
 };
 
 } // namespace sph

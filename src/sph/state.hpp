@@ -16,12 +16,18 @@
 namespace sph {
 
 // Puts element order[k] of `array` at k; `scratch` takes the array's old
-// memory, so that repeated calls allocate nothing once sizes settle.
+// memory, so that repeated calls allocate nothing once sizes settle. By
+// all the threads: by one, the reorder was the one stage that did not run
+// faster with two (SPlisHSPlasH's dam break, dfsph, which reorders every
+// step: 0.029 s with 1 thread, 0.025 with 2).
 template <class T>
 void permute(std::vector<T>& array, std::span<const std::uint32_t> order, std::vector<T>& scratch) {
     scratch.resize(order.size());
+    T* to = scratch.data();
+    const T* from = array.data();
+#pragma omp parallel for schedule(static)
     for (std::size_t k = 0; k < order.size(); ++k)
-        scratch[k] = array[order[k]];
+        to[k] = from[order[k]];
     array.swap(scratch);
 }
 

@@ -372,9 +372,10 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         const std::uint32_t* index = context.neighbours.index.data();
         const Vec<D>* position = state.position.data();
         std::uint32_t* placed_index = slice_index.data();
-        // 32 slices a chunk: a slice's columns are written by one thread.
-#pragma omp parallel for schedule(dynamic, 32)
-        for (std::size_t slice = 0; slice < slices; ++slice) {
+        // Each thread the run of slices it takes in the solves
+        // (thread_slices): it writes what its iterations then read.
+#pragma omp parallel
+        for (const std::size_t slice : thread_slices(columns, slices)) {
             const Kernel local_kernel = kernel;
             const std::size_t first = slice * slice_lanes;
             // Each lane's row; the lanes past n (the last slice's) have

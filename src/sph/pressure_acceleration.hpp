@@ -74,7 +74,7 @@ SPHCLIP_CLONED void
 accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourList& neighbours,
                  const BoundaryParticles<D>* boundary, const NeighbourList& boundary_neighbours,
                  const PairViscosities& viscosities, const std::vector<Real>& pressure_term,
-                 State<D>& state, const Real* wall_pressure_term, bool fluid_pairs = true) {
+                 State<D>& state, const Real* wall_pressure_term) {
     const std::size_t n = state.size();
     const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
     const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
@@ -82,35 +82,32 @@ accelerate_pairs(const Params<D>& params, const Kernel& kernel, const NeighbourL
     for (std::size_t i = 0; i < n; ++i) {
         const Real pi_over_rho2 = pressure_term[i];
         const Real viscous_scale = laminar ? morris.two_mu / state.density[i] : 0;
-        Vec<D> a(0);
-        if (fluid_pairs)
-            a = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
-                const Vec<D> x_ij = state.position[i] - state.position[j];
-                const Real r2 = squared_length<D>(x_ij);
-                const Real r = std::sqrt(r2);
-                const Vec<D> v_ij = state.velocity[i] - state.velocity[j];
-                Real factor = pi_over_rho2 + pressure_term[j];
-                if constexpr (artificial)
-                    factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
-                if constexpr (Kernel::smooth_at_origin) {
-                    // grad W = (dW/dr / r) x: one factor for both terms.
-                    const Real f = kernel.dW_over_r(r);
-                    Vec<D> term = -(params.mass * factor * f) * x_ij;
-                    if constexpr (laminar)
-                        term += (viscous_scale *
-                                 morris.fluid_from_factor(params.mass, state.density[j], r2, f)) *
-                                v_ij;
-                    return term;
-                } else {
-                    Vec<D> term =
-                        -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
-                    if constexpr (laminar)
-                        term += (viscous_scale *
-                                 morris.fluid(kernel, params.mass, state.density[j], r, r2)) *
-                                v_ij;
-                    return term;
-                }
-            });
+        Vec<D> a = sum_over_neighbours(neighbours, i, [&](std::uint32_t j) {
+            const Vec<D> x_ij = state.position[i] - state.position[j];
+            const Real r2 = squared_length<D>(x_ij);
+            const Real r = std::sqrt(r2);
+            const Vec<D> v_ij = state.velocity[i] - state.velocity[j];
+            Real factor = pi_over_rho2 + pressure_term[j];
+            if constexpr (artificial)
+                factor += Pi(glm::dot(v_ij, x_ij), state.density[i] + state.density[j], r2);
+            if constexpr (Kernel::smooth_at_origin) {
+                // grad W = (dW/dr / r) x: one factor for both terms.
+                const Real f = kernel.dW_over_r(r);
+                Vec<D> term = -(params.mass * factor * f) * x_ij;
+                if constexpr (laminar)
+                    term += (viscous_scale *
+                             morris.fluid_from_factor(params.mass, state.density[j], r2, f)) *
+                            v_ij;
+                return term;
+            } else {
+                Vec<D> term = -(params.mass * factor) * pair_gradient(kernel, state, i, j, x_ij, r);
+                if constexpr (laminar)
+                    term += (viscous_scale *
+                             morris.fluid(kernel, params.mass, state.density[j], r, r2)) *
+                            v_ij;
+                return term;
+            }
+        });
         if (boundary) {
             const auto xb = boundary->positions();
             const auto volume = boundary->volumes();
@@ -180,25 +177,44 @@ void compute_pressure_acceleration(const Params<D>& params, const Kernel& kernel
     });
 }
 
-// The viscosities alone, in the same pass with no pressure: for dfsph,
-// whose pressure comes from its solves. One pass over the pairs instead of
-// one for each (the pairs' gathers, r and the kernel's derivative shared).
-// Overwrites state.acceleration; `zero_terms` is the caller's scratch.
-// With fluid_pairs false, the walls' terms only (dfsph sums the fluid
-// pairs' in its own layout).
-template <int D, class Kernel>
-void compute_pair_viscosities(const Params<D>& params, const Kernel& kernel,
-                              const NeighbourList& neighbours, const BoundaryParticles<D>* boundary,
-                              const NeighbourList& boundary_neighbours,
-                              const PairViscosities& viscosities, std::vector<Real>& zero_terms,
-                              State<D>& state, bool fluid_pairs = true) {
-    resize_with_headroom(zero_terms, state.size());
-    std::fill(zero_terms.begin(), zero_terms.end(), Real(0));
-    viscosities.dispatch([&](auto artificial, auto laminar) {
-        detail::accelerate_pairs<decltype(artificial)::value, decltype(laminar)::value, false,
-                                 false>(params, kernel, neighbours, boundary, boundary_neighbours,
-                                        viscosities, zero_terms, state, nullptr, fluid_pairs);
-    });
+// The viscosities' wall terms alone, for dfsph (its pressure comes from its
+// solves; it sums the fluid pairs' terms in its own layout, in floats), from
+// the walls' gradients its density pass keeps, w_ib = rho0 V_b grad W_ib per
+// pair of `walls`: no kernel evaluated again. With a wall particle of density
+// rho0 and mass rho0 V_b, the terms above become
+//   Monaghan: -rho0 V_b Pi_ib grad W_ib = -Pi_ib w_ib,
+//   Morris: (2 mu / rho_i) V_b (x_ib . grad W_ib) / (r^2 + eps) v_ib,
+// with V_b x_ib . grad W_ib = x_ib . w_ib / rho0. Overwrites state.acceleration.
+template <bool artificial, bool laminar, int D>
+SPHCLIP_CLONED void
+set_wall_viscosities(const Params<D>& params, const PairViscosities& viscosities,
+                     const BoundaryParticles<D>& boundary, const NeighbourList& walls,
+                     const std::vector<Vec<D>>& wall_gradient, State<D>& state) {
+    const std::size_t n = state.size();
+    const MonaghanViscosity Pi = artificial ? *viscosities.artificial : MonaghanViscosity{};
+    const MorrisViscosity morris = laminar ? *viscosities.laminar : MorrisViscosity{};
+    const auto xb = boundary.positions();
+    // A local span, not boundary.velocity(b): the loop then vectorises.
+    const auto wall_velocity = boundary.velocities();
+    const Real rho0 = params.rest_density;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec<D> x_i = state.position[i], v_i = state.velocity[i];
+        const Real rho_i = state.density[i];
+        const Real viscous_scale = laminar ? morris.two_mu / (rho_i * rho0) : 0;
+        state.acceleration[i] = sum_over_pairs(walls, i, [&](std::size_t e, std::uint32_t b) {
+            const Vec<D> x_ib = x_i - xb[b];
+            const Vec<D> v_ib = v_i - wall_velocity[b];
+            const Real r2 = squared_length<D>(x_ib);
+            Vec<D> term(0);
+            if constexpr (artificial)
+                term = -Pi(glm::dot(v_ib, x_ib), 2 * rho_i, r2) * wall_gradient[e];
+            if constexpr (laminar)
+                term +=
+                    (viscous_scale * glm::dot(x_ib, wall_gradient[e]) / (r2 + morris.eps)) * v_ib;
+            return term;
+        });
+    }
 }
 
 } // namespace sph

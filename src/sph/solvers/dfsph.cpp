@@ -962,14 +962,17 @@ StepReport DfsphSolver<D>::step(const Params<D>& params, Real dt, State<D>& stat
                                           laminar ? &morris : nullptr};
         // The walls' terms over their pairs, then the fluid pairs' in the
         // slices, in floats.
-        with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
-            compute_pair_viscosities(params, kernel, context.neighbours, context.boundary,
-                                     context.boundary_neighbours, viscosities, zero_terms_, state,
-                                     /*fluid_pairs=*/false);
-        });
         viscosities.dispatch([&](auto has_artificial, auto has_laminar) {
-            add_fluid_viscosities<decltype(has_artificial)::value, decltype(has_laminar)::value>(
-                monaghan.single(), morris.single(), state);
+            constexpr bool with_artificial = decltype(has_artificial)::value;
+            constexpr bool with_laminar = decltype(has_laminar)::value;
+            if (context.boundary)
+                set_wall_viscosities<with_artificial, with_laminar>(
+                    params, viscosities, *context.boundary, context.boundary_neighbours,
+                    wall_gradient_, state);
+            else
+                std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));
+            add_fluid_viscosities<with_artificial, with_laminar>(monaghan.single(), morris.single(),
+                                                                 state);
         });
     } else {
         std::fill(state.acceleration.begin(), state.acceleration.end(), Vec<D>(0));

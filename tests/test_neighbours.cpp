@@ -328,6 +328,72 @@ TEST_CASE("sorted grid neighbours: particles stored in cell order stay in place"
     CHECK(grid.order().data() == order_data);
 }
 
+TEST_CASE("sorted grid: a find after cell_order and the sort it asks for sorts nothing, and "
+          "lists what a fresh search lists",
+          "[neighbours]") {
+    // The run loop's order: cell_order, the particle arrays permuted by it,
+    // then the step's find, which reuses the grid (sorted_in_place). Its
+    // lists must be a fresh grid's, bit for bit; and positions that are not
+    // the sorted ones (one particle moved, or one fewer) must be sorted anew.
+    const auto x = shuffled_lattice<3>(12, 0.01, 0, 31);
+    const Real radius = 0.021;
+    const auto permuted = [&](SortedGrid<3>& grid) {
+        const std::span<const std::uint32_t> order = grid.cell_order(x, radius);
+        std::vector<Vec<3>> sorted(x.size());
+        for (std::size_t k = 0; k < x.size(); ++k)
+            sorted[k] = x[order[k]];
+        return sorted;
+    };
+    const auto fresh_lists = [&](const std::vector<Vec<3>>& positions) {
+        SortedGrid<3> fresh;
+        NeighbourList list;
+        fresh.find(positions, radius, list);
+        return std::pair{list, fresh.order()};
+    };
+    std::vector<std::uint32_t> identity(x.size());
+    std::iota(identity.begin(), identity.end(), 0u);
+    {
+        SortedGrid<3> grid;
+        const std::vector<Vec<3>> sorted = permuted(grid);
+        NeighbourList list;
+        grid.find(sorted, radius, list);
+        const auto [expected, expected_order] = fresh_lists(sorted);
+        CHECK(grid.order() == identity);
+        CHECK(expected_order == identity);
+        CHECK(list.start == expected.start);
+        CHECK(std::equal(list.index.begin(), list.index.begin() + list.pair_count(),
+                         expected.index.begin()));
+    }
+    {
+        // A particle moved across the lattice after the sort.
+        SortedGrid<3> grid;
+        std::vector<Vec<3>> sorted = permuted(grid);
+        sorted[5] += Vec<3>(0.05, 0, 0);
+        NeighbourList list;
+        grid.find(sorted, radius, list);
+        const auto [expected, expected_order] = fresh_lists(sorted);
+        CHECK(grid.order() == expected_order);
+        CHECK(grid.order() != identity);
+        CHECK(as_sorted_rows(list) == as_sorted_rows(expected));
+    }
+    {
+        // One fewer particle, and another radius.
+        SortedGrid<3> grid;
+        std::vector<Vec<3>> sorted = permuted(grid);
+        sorted.pop_back();
+        NeighbourList list;
+        grid.find(sorted, radius, list);
+        CHECK(as_sorted_rows(list) == as_sorted_rows(fresh_lists(sorted).first));
+        SortedGrid<3> other;
+        const std::vector<Vec<3>> again = permuted(other);
+        other.find(again, 1.5 * radius, list);
+        SortedGrid<3> wider;
+        NeighbourList expected;
+        wider.find(again, 1.5 * radius, expected);
+        CHECK(as_sorted_rows(list) == as_sorted_rows(expected));
+    }
+}
+
 TEST_CASE("every neighbour search name makes that search", "[neighbours]") {
     const auto names = neighbour_search_names();
     CHECK(std::find(names.begin(), names.end(), "sorted_grid") != names.end());

@@ -283,6 +283,7 @@ template <int D>
 std::span<const std::uint64_t> SortedGrid<D>::cell_keys(std::span<const Vec<D>> positions,
                                                         Real radius, const Vec<D>& lo,
                                                         const Vec<D>& hi) {
+    sorted_for_order_ = false; // another grid
     set_up_grid(lo, hi, radius);
     const std::size_t n = positions.size();
     keys_.resize(n);
@@ -321,6 +322,7 @@ Box<D> finite_bounds(std::span<const Vec<D>> positions) {
 template <int D>
 void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radius) {
     const std::size_t n = positions.size();
+    sorted_for_order_ = false; // cell_order sets it again
 
     auto [lo, hi] = outside_ ? *outside_ : finite_bounds(positions);
     if (within_)
@@ -620,6 +622,29 @@ SPHCLIP_CLONED void SortedGrid<D>::list_neighbours(Real radius, NeighbourList& o
 }
 
 template <int D>
+bool SortedGrid<D>::sorted_in_place(std::span<const Vec<D>> positions, Real radius) {
+    const bool candidate = sorted_for_order_ && radius == sorted_radius_ &&
+                           positions.size() == order_.size() && !within_ && !outside_;
+    sorted_for_order_ = false;
+    if (!candidate)
+        return false;
+    // Sorted already when each position is the sorted copy's at its index:
+    // a sort would then give the identity order and this same grid, bit for
+    // bit (the cells' runs, their particles by index). A NaN differs from
+    // itself, and sorts again.
+    const std::size_t n = positions.size();
+    std::size_t differing = 0;
+#pragma omp parallel for schedule(static) reduction(+ : differing)
+    for (std::size_t k = 0; k < n; ++k)
+        for (int a = 0; a < D; ++a)
+            differing += positions[k][a] != sorted_x_[a][k];
+    if (differing > 0)
+        return false;
+    std::iota(order_.begin(), order_.end(), 0u);
+    return true;
+}
+
+template <int D>
 void SortedGrid<D>::find(std::span<const Vec<D>> positions, Real radius, NeighbourList& out) {
     const std::size_t n = positions.size();
     if (n >= std::numeric_limits<std::uint32_t>::max())
@@ -636,7 +661,8 @@ void SortedGrid<D>::find(std::span<const Vec<D>> positions, Real radius, Neighbo
         return;
     }
     const auto start = std::chrono::steady_clock::now();
-    sort_into_cells(positions, radius);
+    if (!sorted_in_place(positions, radius))
+        sort_into_cells(positions, radius);
     timings_.build_seconds = seconds_since(start);
     const auto query = std::chrono::steady_clock::now();
     list_neighbours(radius, out);
@@ -654,6 +680,8 @@ std::span<const std::uint32_t> SortedGrid<D>::cell_order(std::span<const Vec<D>>
         cell_start_.assign(1, 0);
     } else {
         sort_into_cells(positions, radius);
+        sorted_for_order_ = !within_ && !outside_;
+        sorted_radius_ = radius;
     }
     return order_;
 }

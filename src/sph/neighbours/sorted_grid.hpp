@@ -170,9 +170,19 @@ class SortedGrid final : public NeighbourSearch<D> {
     // Sorts s.keyed[0, count) by merging its ascending runs.
     static void sort_by_index(std::size_t count, Scratch& s);
     void list_neighbours(Real radius, NeighbourList& out);
+    // Sets the identity order when `positions` are the last cell_order's
+    // sorted (sorted_for_order_); whether it did.
+    bool sorted_in_place(std::span<const Vec<D>> positions, Real radius);
 
     // A box the grid covers besides the positions (cell_order's `within`).
     const Box<D>* within_ = nullptr;
+    // Whether the last call was a cell_order over the positions' own box
+    // at sorted_radius_: if the next find's positions are those positions
+    // permuted by order() (a spatial sort of the particle arrays, as the
+    // run loop does between the two), its grid is this one with the
+    // identity order, and find sorts nothing (sorted_grid.cpp).
+    bool sorted_for_order_ = false;
+    Real sorted_radius_ = 0;
     // The box of the positions outside within_ (cell_order's `outside`).
     const Box<D>* outside_ = nullptr;
     // The grid of the last call.

@@ -28,20 +28,17 @@ namespace sph {
 
 namespace detail {
 constexpr Real pi = std::numbers::pi_v<Real>;
-// T: a floating-point type, or a GCC vector of one.
-template <class T>
+template <std::floating_point T>
 T cube(T x) {
     return x * x * x;
 }
 // x^N as the loop y = 1; y *= x (N times) would give it, with the exponent
 // fixed at compile time: straight-line code, which a vectorised loop may
 // call (a loop inside keeps the caller's loop scalar).
-template <int N, class T>
+template <int N, std::floating_point T>
 T pow_int(T x) {
     if constexpr (N == 0)
         return 1;
-    else if constexpr (N == 1)
-        return x; // 1 x, exactly; and for a vector, which 1 is not
     else
         return pow_int<N - 1>(x) * x;
 }
@@ -116,34 +113,49 @@ struct CubicSpline {
         : h(T(support)), inverse_h(T(1 / support)),
           norm(T(D == 2 ? 40 / (7 * detail::pi * support * support)
                         : 8 / (detail::pi * detail::cube(support)))) {}
-    T W(T r) const { return W_each(r); }
-    T dW(T r) const { return dW_each(r); }
-    T dW_over_r(T r) const { return dW_over_r_each(r); }
+    T W(T r) const {
+        T w;
+        W_each(r, w);
+        return w;
+    }
+    T dW(T r) const {
+        T d;
+        dW_each(r, d);
+        return d;
+    }
+    T dW_over_r(T r) const {
+        T d;
+        dW_over_r_each(r, d);
+        return d;
+    }
     // The same for one T or for each lane of a GCC vector of T at once
-    // (dfsph's pass over a slice): selects, not branches; a scalar still
-    // computes only the branch it takes.
+    // (dfsph's pass over a slice), into `out`: selects, not branches; a
+    // scalar still computes only the branch it takes. (A wide vector
+    // returned by value changes the ABI in a build without AVX.)
     template <class V>
-    V W_each(V r) const {
+    void W_each(const V& r, V& out) const {
         const V q = r * inverse_h;
-        return q >= 1 ? V{}
-                      : (q <= T(0.5) ? norm * (6 * (q * q * q - q * q) + 1)
-                                     : norm * 2 * detail::cube(1 - q));
+        const V a = 1 - q; // a a a is detail::cube(a), written out for a vector
+        out = q >= 1
+                  ? V{}
+                  : (q <= T(0.5) ? norm * (6 * (q * q * q - q * q) + 1) : norm * 2 * (a * a * a));
     }
     template <class V>
-    V dW_each(V r) const {
+    void dW_each(const V& r, V& out) const {
         const V q = r * inverse_h;
-        return q >= 1 ? V{}
-                      : (q <= T(0.5) ? norm * 6 * (3 * q * q - 2 * q) * inverse_h
-                                     : -norm * 6 * (1 - q) * (1 - q) * inverse_h);
+        out = q >= 1 ? V{}
+                     : (q <= T(0.5) ? norm * 6 * (3 * q * q - 2 * q) * inverse_h
+                                    : -norm * 6 * (1 - q) * (1 - q) * inverse_h);
     }
     // q / r = 1 / h: the inner part is 6 (3 q - 2) / h^2, the outer part
     // still needs 1 / r.
     template <class V>
-    V dW_over_r_each(V r) const {
+    void dW_over_r_each(const V& r, V& out) const {
         const V q = r * inverse_h;
-        return q >= 1 ? V{}
-                      : (q <= T(0.5) ? norm * 6 * (3 * q - 2) * inverse_h * inverse_h
-                                     : dW_each(r) / r);
+        V outer;
+        dW_each(r, outer);
+        out = q >= 1 ? V{}
+                     : (q <= T(0.5) ? norm * 6 * (3 * q - 2) * inverse_h * inverse_h : outer / r);
     }
     Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
 };
@@ -160,21 +172,31 @@ struct WendlandC2 {
         : h(T(support)), inverse_h(T(1 / support)),
           norm(T(D == 2 ? 7 / (detail::pi * support * support)
                         : 21 / (2 * detail::pi * detail::cube(support)))) {}
-    T W(T r) const { return W_each(r); }
+    T W(T r) const {
+        T w;
+        W_each(r, w);
+        return w;
+    }
     // d/dr of (1-q)^4 (1+4q) = -20 q (1-q)^3 / h
     T dW(T r) const { return r * dW_over_r(r); }
-    T dW_over_r(T r) const { return dW_over_r_each(r); }
+    T dW_over_r(T r) const {
+        T d;
+        dW_over_r_each(r, d);
+        return d;
+    }
     // For one T or each lane of a vector of T, as in CubicSpline.
     template <class V>
-    V W_each(V r) const {
+    void W_each(const V& r, V& out) const {
         const V q = r * inverse_h;
-        return q < 1 ? norm * detail::pow_int<4>(1 - q) * (1 + 4 * q) : V{};
+        const V a = 1 - q; // ((a a) a) a is detail::pow_int<4>(a), written out for a vector
+        out = q < 1 ? norm * (a * a * a * a) * (1 + 4 * q) : V{};
     }
     // q / r = 1 / h: no division at all.
     template <class V>
-    V dW_over_r_each(V r) const {
+    void dW_over_r_each(const V& r, V& out) const {
         const V q = r * inverse_h;
-        return q < 1 ? -20 * norm * inverse_h * inverse_h * detail::cube(1 - q) : V{};
+        const V a = 1 - q;
+        out = q < 1 ? -20 * norm * inverse_h * inverse_h * (a * a * a) : V{};
     }
     Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
 };

@@ -411,12 +411,6 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                     j[l] = active[l] ? index[begin[l] + c] : own[l];
                     placed[l] = active[l] ? place_of[j[l]] : own_place[l];
                 }
-                static_assert(slice_lanes == 8);
-                std::array<Doubles, D> x_j;
-                for (int k = 0; k < D; ++k)
-                    x_j[k] = Doubles{position[j[0]][k], position[j[1]][k], position[j[2]][k],
-                                     position[j[3]][k], position[j[4]][k], position[j[5]][k],
-                                     position[j[6]][k], position[j[7]][k]};
                 std::memcpy(placed_index + at, &placed, sizeof placed);
                 // r and the density's W in double: rounded to floats, a
                 // change of 1e-12 m in a position could move rho by 1e-7
@@ -425,18 +419,23 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                 // apart, tests/test_reorder.cpp).
                 std::array<Lanes, D> x_ij;
                 Doubles r2{};
+                static_assert(slice_lanes == 8);
                 for (int k = 0; k < D; ++k) {
-                    const Doubles x = x_i[k] - x_j[k];
+                    const Doubles x_j{position[j[0]][k], position[j[1]][k], position[j[2]][k],
+                                      position[j[3]][k], position[j[4]][k], position[j[5]][k],
+                                      position[j[6]][k], position[j[7]][k]};
+                    const Doubles x = x_i[k] - x_j;
                     x_ij[k] = __builtin_convertvector(x, Lanes);
                     r2 += x * x;
                 }
                 Doubles r;
                 square_roots(r, r2);
-                kernel_sum +=
-                    __builtin_convertvector(active, Wide) ? local_kernel.W_each(r) : Doubles{};
-                const Lanes f =
-                    active ? mass * kernel_f.dW_over_r_each(__builtin_convertvector(r, Lanes))
-                           : Lanes{};
+                Doubles w;
+                local_kernel.W_each(r, w);
+                kernel_sum += __builtin_convertvector(active, Wide) ? w : Doubles{};
+                Lanes dw;
+                kernel_f.dW_over_r_each(__builtin_convertvector(r, Lanes), dw);
+                const Lanes f = active ? mass * dw : Lanes{};
                 Lanes g2{};
                 for (int k = 0; k < D; ++k) {
                     const Lanes g = f * x_ij[k];

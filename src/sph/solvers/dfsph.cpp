@@ -285,7 +285,15 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
                              simd_lanes);
     // Moving walls: sum_b w_ib . v_b, fixed for the step (v_b is).
     const bool moving = context.boundary && context.boundary->has_moving();
-    wall_motion_.resize(moving ? n : 0);
+    // Zeros when nothing moves: the solve reads it unconditionally. Read
+    // under a test of a null pointer, GCC made it a masked load from
+    // address 0 with every lane off, which a processor never performs but
+    // qemu-user's AVX2 does (tests/portable/check_variants.sh's 3D dfsph
+    // run faulted there).
+    if (moving)
+        wall_motion_.resize(n);
+    else
+        wall_motion_.assign(n, 0);
     for (std::vector<Real>& component : wall_sum_)
         component.resize(n);
     // No particle is compressed below a fraction of this: with S_i under it
@@ -601,7 +609,7 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
             wall_sum[k] = wall_sum_[k].data();
             velocity[k] = placed_velocity_[k].data();
         }
-        const Real* wall_motion = wall_motion_.empty() ? nullptr : wall_motion_.data();
+        const Real* wall_motion = wall_motion_.data();
         const Real* compression = compression_.data();
         const Real* factor = factor_.data();
         const Real* summed = sum.data();
@@ -653,8 +661,7 @@ SPHCLIP_CLONED int DfsphSolver<D>::solve(const Params<D>& params, Real dt, Targe
                 for (int k = 0; k < D; ++k)
                     walls += w[k][place] * v[k][place];
                 Real rate = wall_mirror * walls + Real(pair_rate[lane]);
-                if (wall_motion)
-                    rate -= wall_mirror * wall_motion[place];
+                rate -= wall_mirror * wall_motion[place]; // 0 without moving walls
                 const Real source = compression[place] + rate;
                 source_of[place] = source;
                 // The residual of a pressure that must stay >= 0: compression

@@ -161,7 +161,7 @@ class DfsphSolver final : public Solver<D> {
     };
     SliceView slice_view() const;
     std::vector<Vec<D>> wall_gradient_; // rho0 V_b grad W_ib per wall pair
-    std::vector<Real> wall_motion_;     // sum_b w_ib . v_b; empty when no wall moves
+    std::vector<Real> wall_motion_;     // sum_b w_ib . v_b; 0 when no wall moves
     // W_i = sum_b w_ib: the walls' whole part in the rate and the
     // correction, since both take the wall particles' v and s from the
     // fluid particle (one read a particle, not one a wall pair, per iteration).

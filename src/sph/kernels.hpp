@@ -42,6 +42,14 @@ T pow_int(T x) {
     else
         return pow_int<N - 1>(x) * x;
 }
+// A kernel's value at one r from its form for each lane of a vector,
+// each(r, out).
+template <std::floating_point T, class Each>
+T one_lane(T r, const Each& each) {
+    T out;
+    each(r, out);
+    return out;
+}
 } // namespace detail
 
 // Müller, Charypar & Gross 2003, "Particle-based fluid simulation for
@@ -114,19 +122,13 @@ struct CubicSpline {
           norm(T(D == 2 ? 40 / (7 * detail::pi * support * support)
                         : 8 / (detail::pi * detail::cube(support)))) {}
     T W(T r) const {
-        T w;
-        W_each(r, w);
-        return w;
+        return detail::one_lane(r, [this](const T& x, T& w) { W_each(x, w); });
     }
     T dW(T r) const {
-        T d;
-        dW_each(r, d);
-        return d;
+        return detail::one_lane(r, [this](const T& x, T& d) { dW_each(x, d); });
     }
     T dW_over_r(T r) const {
-        T d;
-        dW_over_r_each(r, d);
-        return d;
+        return detail::one_lane(r, [this](const T& x, T& d) { dW_over_r_each(x, d); });
     }
     // The same for one T or for each lane of a GCC vector of T at once
     // (dfsph's pass over a slice), into `out`: selects, not branches; a
@@ -173,16 +175,12 @@ struct WendlandC2 {
           norm(T(D == 2 ? 7 / (detail::pi * support * support)
                         : 21 / (2 * detail::pi * detail::cube(support)))) {}
     T W(T r) const {
-        T w;
-        W_each(r, w);
-        return w;
+        return detail::one_lane(r, [this](const T& x, T& w) { W_each(x, w); });
     }
     // d/dr of (1-q)^4 (1+4q) = -20 q (1-q)^3 / h
     T dW(T r) const { return r * dW_over_r(r); }
     T dW_over_r(T r) const {
-        T d;
-        dW_over_r_each(r, d);
-        return d;
+        return detail::one_lane(r, [this](const T& x, T& d) { dW_over_r_each(x, d); });
     }
     // For one T or each lane of a vector of T, as in CubicSpline.
     template <class V>

@@ -269,16 +269,6 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         resize_with_headroom(slice_index_, entries);
         for (std::vector<float>& component : slice_gradient_)
             resize_with_headroom(component, entries);
-        if (n % slice_lanes != 0) {
-            const std::size_t last = slices - 1;
-            for (std::size_t lane = n % slice_lanes; lane < slice_lanes; ++lane)
-                for (std::size_t at = std::size_t(columns[last]) * slice_lanes + lane;
-                     at < std::size_t(columns[last + 1]) * slice_lanes; at += slice_lanes) {
-                    slice_index_[at] = std::uint32_t(n - 1);
-                    for (std::vector<float>& component : slice_gradient_)
-                        component[at] = 0;
-                }
-        }
     }
     resize_with_headroom(wall_gradient_,
                          (context.boundary ? context.boundary_neighbours.pair_count() : 0) +
@@ -462,7 +452,18 @@ SPHCLIP_CLONED void DfsphSolver<D>::prepare(const Params<D>& params, const Kerne
         }
     } else {
         // The seed's kernel (its gradient is not smooth at r = 0): a
-        // particle at a time, in double.
+        // particle at a time, in double. The last slice's lanes past n
+        // first: index n - 1, g = 0 (the slices' pass above writes them).
+        if (n % slice_lanes != 0) {
+            const std::size_t last = slices - 1;
+            for (std::size_t lane = n % slice_lanes; lane < slice_lanes; ++lane)
+                for (std::size_t at = std::size_t(columns[last]) * slice_lanes + lane;
+                     at < std::size_t(columns[last + 1]) * slice_lanes; at += slice_lanes) {
+                    slice_index[at] = std::uint32_t(n - 1);
+                    for (int k = 0; k < D; ++k)
+                        slice_gradient[k][at] = 0;
+                }
+        }
 #pragma omp parallel for schedule(dynamic, 256)
         for (std::size_t place = 0; place < n; ++place) {
             const std::size_t i = row[place];

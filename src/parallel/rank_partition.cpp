@@ -114,6 +114,10 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         MPI_Allreduce(MPI_IN_PLACE, values.data(), message_size(values.size()), MPI_DOUBLE, MPI_MAX,
                       MPI_COMM_WORLD);
     }
+    Real max_over_ranks(Real value) override {
+        max(std::span<Real>(&value, 1));
+        return value;
+    }
     int lowest(int key) override {
         struct {
             int key, rank;
@@ -174,6 +178,9 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             context.halo = nullptr;
             for (std::size_t i = 0; i < state.size(); ++i)
                 state.acceleration[i] = local_.acceleration[owned_offset_ + i];
+            // What that pass kept (where wcsph made its cells) is kept for
+            // the step, as one process keeps it.
+            keep_arrays(state.size(), kept);
             current = true;
         }
         choose_halo(params, dt, state, kept, context);
@@ -720,6 +727,17 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         set_cut(std::move(first));
     }
 
+    // The float passes' cells are as wide as h, and their skin wider
+    // (solver.cell_skin), made where the particles were up to half the skin
+    // from where they are: two particles in cells within reach of each
+    // other are now up to one skin further apart than the cells say.
+    Real cell_width(const Params<D>& params) const {
+        return params.h * (1 + (whole_cells_ ? params.cell_skin : 0)) * (1 + 1e-5);
+    }
+    Real skin_width(const Params<D>& params) const {
+        return whole_cells_ ? params.cell_skin * params.h : 0;
+    }
+
     // The box within which the step may look for boundary particles: a
     // support radius (and a Verlet step's drift) around every particle this
     // rank holds, owned or halo; for the float passes, which read every
@@ -734,7 +752,8 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
                 hi = glm::max(hi, x);
             }
         const Real margin =
-            Real(whole_cells_ ? 2 : 1) * (params.h * (1 + 1e-5) + 2 * move_) * (1 + 1e-6);
+            Real(whole_cells_ ? 2 : 1) * (cell_width(params) + 2 * move_) * (1 + 1e-6) +
+            skin_width(params);
         walls_held_here_ = cover_(Box<D>{lo - margin, hi + margin});
     }
 
@@ -779,7 +798,8 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         // the same bits need the same candidates, every particle of the
         // cells within `hops` cells of an owned one's, so one cell further.
         const Real reach =
-            Real(hops_ + (whole_cells_ ? 1 : 0)) * (params.h * (1 + 1e-5) + 2 * move) * (1 + 1e-6);
+            Real(hops_ + (whole_cells_ ? 1 : 0)) * (cell_width(params) + 2 * move) * (1 + 1e-6) +
+            skin_width(params);
         // A reach that is not finite (speeds blown up): every particle.
         const bool everyone = !(reach > 0) || !std::isfinite(reach);
         whole_halos_ += everyone ? 1 : 0;
@@ -1288,9 +1308,9 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
         }
     }
 
-    void keep_results(State<D>& state, std::span<std::vector<Real>* const> kept, double seconds) {
-        const std::size_t m = state.size();
-        copy_owned_back(state);
+    // The owned particles' entries of the solver's kept arrays (m owned),
+    // where every rank's pass filled them.
+    void keep_arrays(std::size_t m, std::span<std::vector<Real>* const> kept) {
         std::uint32_t filled = 0;
         for (std::size_t a = 0; a < kept.size(); ++a)
             if (kept[a]->size() == local_.size())
@@ -1304,6 +1324,12 @@ class RankPartition final : public Partition<D>, public HaloExchange<D> {
             else
                 kept_owned_[a].clear();
         }
+    }
+
+    void keep_results(State<D>& state, std::span<std::vector<Real>* const> kept, double seconds) {
+        const std::size_t m = state.size();
+        copy_owned_back(state);
+        keep_arrays(m, kept);
         std::array<double, figure_count> figures{};
         figures[owned_figure] = double(m);
         figures[local_figure] = double(local_.size());

@@ -95,6 +95,10 @@ Params<D> make_params(const Scene& scene, const Derived& derived) {
     p.domain = {to_vec<D>(scene.domain.min), to_vec<D>(scene.domain.max)};
     p.obstacles = make_obstacles<D>(scene);
     p.paddles = make_paddles<D>(scene);
+    // Measured on the 2D flows (docs/benchmarks.md, "Cells that serve
+    // several steps"); moving walls would leave the cells' walls behind.
+    if (D == 2 && p.precision == Precision::single && p.paddles.empty())
+        p.cell_skin = scene.solver.cell_skin.value_or(0.05);
     return p;
 }
 

@@ -109,6 +109,9 @@ struct Params {
     Real rebalance_above = 1.1;
     Precision precision = Precision::double_precision;
     PairTerms pair_terms = PairTerms::both_sides;
+    // 2D single-precision passes: how much wider than h their cells are, a
+    // fraction of h (solver.cell_skin); 0: cells made every step.
+    Real cell_skin = 0;
     // Gravity that the walls' pressure adds across the fluid-wall distance
     // (WallPressure::hydrostatic); zero: the mirrored pressure.
     Vec<D> wall_gravity{0}; // m/s^2

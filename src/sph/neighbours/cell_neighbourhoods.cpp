@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace sph {
 
@@ -90,6 +91,13 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
     }
     max_candidates_ = most;
     tiled_ready_ = false;
+}
+
+template <int D>
+Real CellNeighbourhoods<D>::refresh_fluid_positions(std::span<const Vec<D>> fluid) {
+    if (fluid.size() != fluid_count_)
+        throw std::logic_error("CellNeighbourhoods::refresh_fluid_positions: another fluid");
+    return grid_.refresh_sorted_positions(fluid, positions_);
 }
 
 template <int D>

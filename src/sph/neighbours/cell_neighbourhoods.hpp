@@ -51,6 +51,15 @@ class CellNeighbourhoods {
                const Box<D>* walls_bounds = nullptr, const WallsWithin& walls_within = {},
                bool cell_runs = true, bool walls_inside = false);
 
+    // The fluid's sorted positions set to these (the same particles as the
+    // last build's, indexed as then), the cells and their runs kept: for
+    // cells made at earlier positions and wide enough to still hold every
+    // pair within reach (a skin: sph/single_precision/single_passes.hpp).
+    // The walls' stay: they must not have moved. Returns the largest squared
+    // distance of a fluid particle from where the build had it (infinite
+    // for one not finite).
+    Real refresh_fluid_positions(std::span<const Vec<D>> fluid);
+
     std::size_t fluid_count() const { return fluid_count_; }
     // The wall particle (an index into build's `walls`) that sorted wall
     // entry w = order()[k] - fluid_count() is.
@@ -118,7 +127,7 @@ class CellNeighbourhoods {
 
   private:
     SortedGrid<D> grid_;
-    std::vector<Vec<D>> positions_;         // fluid then walls
+    std::vector<Vec<D>> positions_;         // fluid then walls, as built
     std::vector<std::uint32_t> wall_index_; // the walls sorted, by index
     std::size_t fluid_count_ = 0;
     // Per grid cell.

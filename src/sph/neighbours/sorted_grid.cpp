@@ -368,6 +368,26 @@ void SortedGrid<D>::sort_into_cells(std::span<const Vec<D>> positions, Real radi
 }
 
 template <int D>
+Real SortedGrid<D>::refresh_sorted_positions(std::span<const Vec<D>> moved,
+                                             std::span<const Vec<D>> sorted) {
+    sorted_for_order_ = false;
+    const std::size_t n = order_.size(), count = moved.size();
+    Real most = 0;
+#pragma omp parallel for schedule(static) reduction(max : most)
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::uint32_t i = order_[k];
+        if (i >= count)
+            continue;
+        const Vec<D> x = moved[i], d = x - sorted[i];
+        const Real d2 = glm::dot(d, d);
+        most = std::max(most, d2 == d2 ? d2 : std::numeric_limits<Real>::infinity());
+        for (int a = 0; a < D; ++a)
+            sorted_x_[a][k] = x[a];
+    }
+    return most;
+}
+
+template <int D>
 std::uint64_t SortedGrid<D>::tile(std::size_t cell, int& colour) const {
     const Coordinates at = coordinates(cell);
     std::uint64_t key = 0;

@@ -99,6 +99,13 @@ class SortedGrid final : public NeighbourSearch<D> {
     // by ascending position; returns how many.
     using NeighbourRuns = std::array<Range, D == 2 ? 9 : 27>;
     int neighbour_runs(std::size_t cell, NeighbourRuns& runs) const;
+    // Copies `moved`, the first moved.size() of the positions the last
+    // cell_order sorted (`sorted`, indexed as then), into the sorted arrays
+    // without sorting again: the cells stay those of `sorted`, which a
+    // caller keeps exact by a skin (sph/neighbours/cell_neighbourhoods.hpp).
+    // Returns the largest squared distance from a position in `sorted` to
+    // its moved one (infinite for one not finite). By all threads.
+    Real refresh_sorted_positions(std::span<const Vec<D>> moved, std::span<const Vec<D>> sorted);
     // The positions in cell order, one array per axis. sorted_tail more
     // entries follow each in memory, readable (their values mean nothing):
     // a loop may copy whole vectors past a run's end.

@@ -35,15 +35,38 @@
 
 namespace sph {
 
+// 2D: the cells made wider than the support by `width` (solver.cell_skin),
+// at the fluid's positions `made_at` (the solver keeps them, a step's
+// positions, until a particle has moved half the width from its own: the
+// cells then still hold every pair within the support, and a cell's
+// neighbourhood every candidate; the Verlet skin of molecular dynamics,
+// on cells rather than lists). `keep`: the last call's cells were made at
+// these same `made_at`, in this memory order, and serve again, with the
+// positions refresh_cells last gave. None when `width` is 0.
+template <int D>
+struct CellSkin {
+    std::span<const Vec<D>> made_at;
+    Real width = 0; // m
+    bool keep = false;
+};
+
 template <int D>
 class SinglePasses {
   public:
     virtual ~SinglePasses() = default;
     // The grid cells at these positions (fluid and walls): the step's
     // neighbour search. `boundary` may be null. `pair_terms`: the
-    // solver.pair_terms the passes will take (params.pair_terms).
+    // solver.pair_terms the passes will take (params.pair_terms). With a
+    // skin (2D, walls that do not move), the cells are made at
+    // skin.made_at instead.
     virtual void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
-                            Real radius, PairTerms pair_terms) = 0;
+                            Real radius, PairTerms pair_terms, const CellSkin<D>& skin) = 0;
+    // 2D, after find_cells with a skin: the positions the passes read set
+    // to these (the same particles), the cells kept; returns the largest
+    // squared distance of a particle from where the cells were made at
+    // (infinite for one not finite), for the caller to decide whether they
+    // still serve.
+    virtual Real refresh_cells(std::span<const Vec<D>> fluid) = 0;
     // state.density = sum_j m_j W_ij over fluid and wall particles.
     virtual void density(const Params<D>& params, KernelKind kernel,
                          const BoundaryParticles<D>* boundary, State<D>& state) = 0;

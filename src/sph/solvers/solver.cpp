@@ -35,7 +35,7 @@ std::unique_ptr<Solver<D>> make_solver(SolverKind kind, const Params<D>& params)
     case SolverKind::seed:
         return std::make_unique<SeedSolver<D>>(params.kernel);
     case SolverKind::wcsph:
-        return std::make_unique<WcsphSolver<D>>(params.kernel);
+        return std::make_unique<WcsphSolver<D>>(params.kernel, params.cell_skin > 0);
     case SolverKind::dfsph:
         return std::make_unique<DfsphSolver<D>>(params.kernel);
     }

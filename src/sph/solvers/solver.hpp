@@ -45,6 +45,8 @@ class HaloExchange {
     // it, the whole sum, on every rank.
     virtual Real sum_before() = 0;
     virtual Real finish_sum(Real sum) = 0;
+    // The largest of every rank's `value` (exact in any order).
+    virtual Real max_over_ranks(Real value) = 0;
     // Empties the halo's rows of a neighbour list just built, where no
     // result of the step read from a halo particle's own neighbours is kept
     // or read by an owned one (the halo's densities come from their owners;

@@ -162,6 +162,18 @@ const KeyTable<SolverSettings>& solver_keys() {
                 "the start (1.1-1.2x on 2 cores from 11,700 to 97,000). Changes round-off "
                 "only.",
          .choices = {"auto", "both_sides", "once"}},
+        {.path = "cell_skin",
+         .field = &S::cell_skin,
+         .doc = "2D wcsph in single precision: its grid cells are made this fraction of the "
+                "kernel's support wider, at one step's positions, and serve the steps after "
+                "until a particle has moved half that far (a Verlet skin, on cells): their "
+                "build, a sixth of the step on DualSPHysics's 2D dam break, then runs every "
+                "few steps, for a few more candidates in each pass. 0: made every step. Not "
+                "with moving walls (paddles), which make them every step. Changes round-off "
+                "only.",
+         .bound = Bound::fraction,
+         .absent = "0.05",
+         .only_dimension = 2},
     };
     return keys;
 }

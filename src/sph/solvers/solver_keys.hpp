@@ -41,6 +41,9 @@ struct SolverSettings {
     std::optional<Precision> precision;
     // How the 3D single-precision passes take a fluid pair; none: auto.
     std::optional<PairTerms> pair_terms;
+    // 2D single-precision passes: how much wider than the support their
+    // cells are made, a fraction of it; none: the default (scene_setup).
+    std::optional<double> cell_skin;
     // mirror | hydrostatic | extrapolated (sph/params.hpp)
     WallPressure wall_pressure = WallPressure::mirror;
     // wcsph: delta of delta-SPH (Antuono et al. 2010); 0: the density summed.

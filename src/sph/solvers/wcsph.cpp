@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -19,7 +20,7 @@ namespace {
 // neighbour lists, or in float on grid cells.
 template <int D, class Kernel>
 void density(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
-             SinglePasses<D>* single, State<D>& state) {
+             SinglePasses<D>* single, const CellSkin<D>& skin, State<D>& state) {
     if (params.precision == Precision::double_precision) {
         find_neighbours_and_density(params, kernel, context, state);
         return;
@@ -27,7 +28,7 @@ void density(const Params<D>& params, const Kernel& kernel, StepContext<D>& cont
     SinglePasses<D>& cells = *single;
     {
         auto timed = context.time(Stage::neighbour_search);
-        cells.find_cells(state.position, context.boundary, params.h, params.pair_terms);
+        cells.find_cells(state.position, context.boundary, params.h, params.pair_terms, skin);
     }
     auto timed = context.time(Stage::density);
     cells.density(params, params.kernel, context.boundary, state);
@@ -43,12 +44,82 @@ void pressure(const Params<D>& params, StepContext<D>& context, State<D>& state)
 // The density, then Tait's pressure.
 template <int D, class Kernel>
 void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepContext<D>& context,
-                          SinglePasses<D>* single, State<D>& state) {
-    density(params, kernel, context, single, state);
+                          SinglePasses<D>* single, const CellSkin<D>& skin, State<D>& state) {
+    density(params, kernel, context, single, skin, state);
     pressure(params, context, state);
 }
 
 } // namespace
+
+template <int D>
+CellSkin<D> WcsphSolver<D>::cell_skin(const Params<D>& params, const State<D>& state,
+                                      StepContext<D>& context) {
+    const Real width = params.cell_skin * params.h;
+    if (!cell_skin_ || !(width > 0) || params.precision != Precision::single ||
+        (context.boundary && context.boundary->has_moving())) {
+        cells_made_ = false;
+        return {};
+    }
+    auto timed = context.time(Stage::neighbour_search);
+    const std::size_t n = state.size();
+    // The largest squared move since the cells were made; infinite for
+    // other particles or a position that is not finite. In one process,
+    // with the cells still made, from the passes' copy of the positions,
+    // which it also sets (one pass over the particles rather than two).
+    Real most = std::numeric_limits<Real>::infinity();
+    if (made_at_[0].size() != n)
+        cells_made_ = false;
+    else if (cells_made_ && !context.halo)
+        most = single_passes().refresh_cells(state.position);
+    else {
+        most = 0;
+#pragma omp parallel for schedule(static) reduction(max : most)
+        for (std::size_t i = 0; i < n; ++i) {
+            Real d2 = 0;
+            for (int a = 0; a < D; ++a) {
+                const Real d = state.position[i][a] - made_at_[std::size_t(a)][i];
+                d2 += d * d;
+            }
+            most = std::max(most, d2 == d2 ? d2 : std::numeric_limits<Real>::infinity());
+        }
+    }
+    // Every rank decides as one process does: on the whole set's largest move.
+    if (context.halo)
+        most = context.halo->max_over_ranks(most);
+    // A pair within the support now was within it plus twice the largest
+    // move when the cells were made: cells as wide as the support plus the
+    // skin hold it while twice that move is under the skin.
+    const bool remake = !(4 * most < width * width);
+    if (remake) {
+        for (int a = 0; a < D; ++a)
+            made_at_[std::size_t(a)].resize(n);
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i)
+            for (int a = 0; a < D; ++a)
+                made_at_[std::size_t(a)][i] = state.position[i][a];
+        cells_made_ = false;
+    }
+    // Over ranks a step's particles are others every step: the cells are
+    // made every step, at the positions one process made them at.
+    const bool keep = cells_made_ && !context.halo;
+    if (!keep) {
+        made_at_points_.resize(n);
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i)
+            for (int a = 0; a < D; ++a)
+                made_at_points_[i][a] = made_at_[std::size_t(a)][i];
+    }
+    cells_made_ = true;
+    return {made_at_points_, width, keep};
+}
+
+template <int D>
+void WcsphSolver<D>::permute(std::span<const std::uint32_t> order) {
+    for (std::vector<Real>* kept : kept_)
+        if (kept->size() == order.size())
+            sph::permute(*kept, order, permute_scratch_);
+    cells_made_ = false; // made in the old order
+}
 
 template <int D>
 void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& state,
@@ -71,7 +142,8 @@ void WcsphSolver<D>::compute_accelerations(const Params<D>& params, State<D>& st
             find_neighbours_and_carried_density(params, kernel, context, state);
             pressure(params, context, state);
         } else
-            density_and_pressure(params, kernel, context, single, state);
+            density_and_pressure(params, kernel, context, single, cell_skin(params, state, context),
+                                 state);
         // Over ranks: the halo's densities and pressures from their owners.
         context.share_halo_densities(state);
         // 2. Pressure: a = -sum m (p_i / rho_i^2 + p_j / rho_j^2 + Pi_ij) grad W,
@@ -104,15 +176,18 @@ template <int D>
 void WcsphSolver<D>::update_fields(const Params<D>& params, State<D>& state,
                                    StepContext<D>& context) {
     SinglePasses<D>* single = params.precision == Precision::single ? &single_passes() : nullptr;
+    // A frame's fields from cells made where the particles are, as without
+    // a skin (the next step makes its own again).
+    cells_made_ = false;
     with_kernel<D>(kernel_, params.h, [&](const auto& kernel) {
         if (params.density_diffusion > 0) {
             find_neighbours_and_carried_density(params, kernel, context, state);
             if (context.output_pressure)
                 pressure(params, context, state);
         } else if (context.output_pressure)
-            density_and_pressure(params, kernel, context, single, state);
+            density_and_pressure(params, kernel, context, single, CellSkin<D>{}, state);
         else // the next step computes its own pressure
-            density(params, kernel, context, single, state);
+            density(params, kernel, context, single, CellSkin<D>{}, state);
     });
     // The outputs read the neighbour lists (3D culling of buried particles),
     // which single-precision steps do not build.

@@ -166,11 +166,13 @@ const KeyTable<SolverSettings>& solver_keys() {
          .field = &S::cell_skin,
          .doc = "2D wcsph in single precision: its grid cells are made this fraction of the "
                 "kernel's support wider, at one step's positions, and serve the steps after "
-                "until a particle has moved half that far (a Verlet skin, on cells): their "
-                "build, a sixth of the step on DualSPHysics's 2D dam break, then runs every "
-                "few steps, for a few more candidates in each pass. 0: made every step. Not "
-                "with moving walls (paddles), which make them every step. Changes round-off "
-                "only.",
+                "until a particle has moved half that far (a Verlet skin, on cells); made "
+                "without it while the fastest particle moves more than half of it a step (a "
+                "sound speed near the flow's: no build would be saved). Their build, a sixth "
+                "of the step on DualSPHysics's 2D dam break, then runs every few steps, for "
+                "a few more candidates in each pass: 1.04-1.12x on the 2D flows. 0: made "
+                "every step. Not with moving walls (paddles), which make them every step. "
+                "Changes round-off only.",
          .bound = Bound::fraction,
          .absent = "0.05",
          .only_dimension = 2},

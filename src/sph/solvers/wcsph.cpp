@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
@@ -54,34 +55,59 @@ void density_and_pressure(const Params<D>& params, const Kernel& kernel, StepCon
 template <int D>
 CellSkin<D> WcsphSolver<D>::cell_skin(const Params<D>& params, const State<D>& state,
                                       StepContext<D>& context) {
-    const Real width = params.cell_skin * params.h;
-    if (!cell_skin_ || !(width > 0) || params.precision != Precision::single ||
+    const Real widest = params.cell_skin * params.h;
+    if (!cell_skin_ || !(widest > 0) || params.precision != Precision::single ||
         (context.boundary && context.boundary->has_moving())) {
         cells_made_ = false;
         return {};
     }
     auto timed = context.time(Stage::neighbour_search);
     const std::size_t n = state.size();
-    // The largest squared move since the cells were made; infinite for
-    // other particles or a position that is not finite. In one process,
-    // with the cells still made, from the passes' copy of the positions,
-    // which it also sets (one pass over the particles rather than two).
-    Real most = std::numeric_limits<Real>::infinity();
-    if (made_at_[0].size() != n)
+    const bool same_particles = made_at_[0].size() == n;
+    if (!same_particles)
         cells_made_ = false;
-    else if (cells_made_ && !context.halo)
-        most = single_passes().refresh_cells(state.position);
-    else {
-        most = 0;
+    // Cells made without a skin served one step: made again now.
+    const bool certain = !same_particles || !(skin_width_ > 0);
+    // Copies of the positions: where the cells are made, and the same as
+    // points for the passes. In one parallel region, as few as the step
+    // needs: a region's start costs as much as the copies of a few
+    // thousand particles.
+    const auto record = [&](bool made_at, bool points, bool measure) {
+        Real most = 0;
+        if (made_at)
+            for (int a = 0; a < D; ++a)
+                made_at_[std::size_t(a)].resize(n);
+        if (points)
+            made_at_points_.resize(n);
 #pragma omp parallel for schedule(static) reduction(max : most)
         for (std::size_t i = 0; i < n; ++i) {
             Real d2 = 0;
             for (int a = 0; a < D; ++a) {
-                const Real d = state.position[i][a] - made_at_[std::size_t(a)][i];
-                d2 += d * d;
+                Real& at = made_at_[std::size_t(a)][i];
+                if (measure) {
+                    const Real d = state.position[i][a] - at;
+                    d2 += d * d;
+                }
+                if (made_at)
+                    at = state.position[i][a];
+                if (points)
+                    made_at_points_[i][a] = at;
             }
             most = std::max(most, d2 == d2 ? d2 : std::numeric_limits<Real>::infinity());
         }
+        return most;
+    };
+    // The largest squared move since the cells were made; infinite for
+    // other particles or a position that is not finite. In one process,
+    // with the cells still made, from the passes' copy of the positions,
+    // which it also sets.
+    Real most = std::numeric_limits<Real>::infinity();
+    bool recorded = false;
+    if (same_particles && cells_made_ && !context.halo)
+        most = single_passes().refresh_cells(state.position);
+    else if (same_particles) {
+        most = record(certain, false, true);
+        recorded = certain;
     }
     // Every rank decides as one process does: on the whole set's largest move.
     if (context.halo)
@@ -89,28 +115,37 @@ CellSkin<D> WcsphSolver<D>::cell_skin(const Params<D>& params, const State<D>& s
     // A pair within the support now was within it plus twice the largest
     // move when the cells were made: cells as wide as the support plus the
     // skin hold it while twice that move is under the skin.
-    const bool remake = !(4 * most < width * width);
+    const bool remake = certain || !(4 * most < skin_width_ * skin_width_);
+    ++steps_on_cells_;
     if (remake) {
-        for (int a = 0; a < D; ++a)
-            made_at_[std::size_t(a)].resize(n);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i)
-            for (int a = 0; a < D; ++a)
-                made_at_[std::size_t(a)][i] = state.position[i][a];
+        // The next cells' skin: solver.cell_skin where, at the pace the
+        // fastest particle kept since the last were made (under half the
+        // skin a step), they would serve a step more; else none (a sound
+        // speed near the flow's: a skin would cost candidates and save no
+        // build; measured on dam_break_water_2d, docs/benchmarks.md).
+        const Real pace = steps_on_cells_ > 0 && std::isfinite(most)
+                              ? std::sqrt(most) / Real(steps_on_cells_)
+                              : 0;
+        skin_width_ = pace > 0 && 2 * pace > widest ? 0 : widest;
+        steps_on_cells_ = 0;
         cells_made_ = false;
+        if (!recorded)
+            record(true, skin_width_ > 0, false);
+        else if (skin_width_ > 0)
+            record(false, true, false);
     }
-    // Over ranks a step's particles are others every step: the cells are
-    // made every step, at the positions one process made them at.
     const bool keep = cells_made_ && !context.halo;
-    if (!keep) {
-        made_at_points_.resize(n);
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < n; ++i)
-            for (int a = 0; a < D; ++a)
-                made_at_points_[i][a] = made_at_[std::size_t(a)][i];
-    }
-    cells_made_ = true;
-    return {made_at_points_, width, keep};
+    // Cells made again from where they were made before (over ranks, every
+    // step; in one process after a reordering or a frame's fields): the
+    // points from made_at_, which follows the particles.
+    if (!remake && !keep)
+        record(false, true, false);
+    // Without a skin the cells are made where the particles are (where
+    // made_at_ now has them too): they serve this step only.
+    cells_made_ = skin_width_ > 0;
+    if (!(skin_width_ > 0))
+        return {};
+    return {made_at_points_, skin_width_, keep};
 }
 
 template <int D>

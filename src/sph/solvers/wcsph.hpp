@@ -88,6 +88,10 @@ class WcsphSolver final : public ExplicitSolver<D> {
     // Whether the passes' cells are those made at made_at_ in the current
     // memory order (one process: a step may keep them).
     bool cells_made_ = false;
+    // The skin of the cells made last (m; 0: made where the particles
+    // were, for one step), and the steps they have served.
+    Real skin_width_ = 0;
+    int steps_on_cells_ = 0;
     std::vector<Real> pressure_term_; // p / rho^2 per particle, scratch
     // solver.density_diffusion: D rho / Dt, kg/(m^D s), and the renormalised
     // density gradients (sph/density_diffusion.hpp), scratch of each step.

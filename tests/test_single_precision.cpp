@@ -267,7 +267,11 @@ void check_skin(std::string_view variant, Real moved) {
         worst_density =
             std::max(worst_density, std::abs(later.density[i] / later_plain.density[i] - 1));
     CHECK(worst_density < 1e-6);
-    CHECK(largest_difference(later.acceleration, later_plain.acceleration) < 1e-5 * scale);
+    // Against the moved state's own largest acceleration: the random moves
+    // bring some pairs closer, and their forces' round-off grows with them.
+    const Real later_scale = largest(later_plain.acceleration);
+    INFO("largest acceleration " << later_scale << " (" << scale << " before the move)");
+    CHECK(largest_difference(later.acceleration, later_plain.acceleration) < 1e-5 * later_scale);
 }
 
 } // namespace

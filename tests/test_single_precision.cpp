@@ -196,29 +196,25 @@ void check_skin(std::string_view variant, Real moved) {
     const MonaghanViscosity monaghan = artificial.pair_viscosity(params);
     const PairViscosities viscosity{&monaghan, nullptr};
     const PinnedVariant pinned(variant);
-    // The accelerations from the plain cells' density and pressure, so that
-    // they compare the pressure pass only (Tait's law makes a density's
-    // round-off a large pressure's).
-    State<D> plain;
-    const auto compute = [&](State<D>& state, const CellSkin<D>& skin) {
-        auto passes = make_single_passes<D>();
-        passes->find_cells(state.position, walls, params.h, params.pair_terms, skin);
-        passes->density(params, params.kernel, walls, state);
+    // The passes' density, then their accelerations from `reference`'s
+    // density and pressure (Tait's from their own density when null), so
+    // that two runs' accelerations compare the pressure pass only (Tait's
+    // law makes a density's round-off a large pressure's).
+    const auto run = [&](SinglePasses<D>& passes, State<D>& state, const CellSkin<D>& skin,
+                         const State<D>* reference) {
+        passes.find_cells(state.position, walls, params.h, params.pair_terms, skin);
+        passes.density(params, params.kernel, walls, state);
         const std::vector<Real> density = state.density;
-        if (plain.size() > 0) {
-            state.density = plain.density;
-            state.pressure = plain.pressure;
+        if (reference) {
+            state.density = reference->density;
+            state.pressure = reference->pressure;
         } else
             compute_pressure_tait(params, state);
-        passes->pressure_acceleration(params, params.kernel, walls, viscosity, state);
+        passes.pressure_acceleration(params, params.kernel, walls, viscosity, state);
         state.density = density;
-        return passes;
     };
-    plain = sim.state();
-    plain.resize(0);
-    State<D> first = sim.state();
-    compute(first, {});
-    plain = first;
+    State<D> plain = sim.state();
+    run(*make_single_passes<D>(), plain, {}, nullptr);
     // Each particle's cell position a random step from where it is.
     const Real width = 0.2 * params.h;
     std::vector<Vec<D>> made_at = plain.position;
@@ -233,7 +229,8 @@ void check_skin(std::string_view variant, Real moved) {
         x += r * Vec<D>(std::cos(angle), std::sin(angle));
     }
     State<D> skinned = sim.state();
-    const auto passes = compute(skinned, {made_at, width, false});
+    const auto passes = make_single_passes<D>();
+    run(*passes, skinned, {made_at, width, false}, &plain);
     const Real scale = largest(plain.acceleration);
     REQUIRE(scale > 1);
     Real worst_density = 0;
@@ -247,21 +244,13 @@ void check_skin(std::string_view variant, Real moved) {
     for (std::size_t i = 0; i < later.size(); ++i)
         later.position[i] += 0.25 * (made_at[i] - later.position[i]);
     State<D> later_plain = later;
-    plain.resize(0);
-    compute(later_plain, {});
-    plain = later_plain;
+    run(*make_single_passes<D>(), later_plain, {}, nullptr);
     Real most = 0;
     for (std::size_t i = 0; i < later.size(); ++i)
         most = std::max(most,
                         glm::dot(later.position[i] - made_at[i], later.position[i] - made_at[i]));
     CHECK(passes->refresh_cells(later.position) == most);
-    passes->find_cells(later.position, walls, params.h, params.pair_terms, {made_at, width, true});
-    passes->density(params, params.kernel, walls, later);
-    const std::vector<Real> density = later.density;
-    later.density = plain.density;
-    later.pressure = plain.pressure;
-    passes->pressure_acceleration(params, params.kernel, walls, viscosity, later);
-    later.density = density;
+    run(*passes, later, {made_at, width, true}, &later_plain);
     worst_density = 0;
     for (std::size_t i = 0; i < later.size(); ++i)
         worst_density =

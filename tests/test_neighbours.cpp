@@ -524,3 +524,56 @@ TEMPLATE_TEST_CASE_SIG("cell neighbourhoods: the walls' grid gives the same cell
         CHECK(x.runs.size() == y.runs.size());
     }
 }
+
+// The strips a 2D cell pass copies (CellNeighbourhoods::strips): every cell
+// with fluid once, row by row and along each row, no strip across two rows
+// or two groups of strip_width columns, and the fluid counted before each.
+// Dense (a counting sort by row) and with a stray particle far above (rows
+// far more than cells: sorted instead).
+TEST_CASE("2D strips hold every cell with fluid once, row by row", "[neighbours]") {
+    for (const bool stray : {false, true}) {
+        std::vector<Vec<2>> fluid = random_cloud<2>(3000, 0, 1, 7);
+        if (stray)
+            fluid.push_back({0.5, 400.0});
+        CellNeighbourhoods<2> cells;
+        cells.build(fluid, {}, 0.03);
+        std::vector<std::uint32_t> with_fluid;
+        for (std::size_t c = 0; c < cells.cell_count(); ++c)
+            if (cells.cell(c).has_fluid())
+                with_fluid.push_back(static_cast<std::uint32_t>(c));
+        const auto strips = cells.strips();
+        const auto listed = cells.strip_cells();
+        REQUIRE(listed.size() == with_fluid.size());
+        REQUIRE(!strips.empty());
+        constexpr std::uint32_t width = CellNeighbourhoods<2>::strip_width;
+        std::uint32_t next = 0, fluid_before = 0;
+        std::vector<std::uint32_t> seen;
+        for (std::size_t s = 0; s < strips.size(); ++s) {
+            const auto& strip = strips[s];
+            CHECK(strip.first == next);
+            CHECK(strip.last > strip.first);
+            CHECK(strip.fluid_before == fluid_before);
+            for (std::uint32_t i = strip.first; i < strip.last; ++i) {
+                const auto& cell = listed[i];
+                const auto at = cells.coordinates(cell.cell);
+                CHECK(cell.x == std::uint32_t(at[0]));
+                CHECK(cell.y == std::uint32_t(at[1]));
+                CHECK(cell.y == strip.y);
+                CHECK(cell.x / width == listed[strip.first].x / width);
+                if (i > 0)
+                    CHECK((listed[i - 1].y < cell.y ||
+                           (listed[i - 1].y == cell.y && listed[i - 1].x < cell.x)));
+                fluid_before += cells.cell(cell.cell).fluid_end - cells.cell(cell.cell).begin;
+                seen.push_back(cell.cell);
+            }
+            if (s > 0)
+                CHECK((strips[s - 1].y != strip.y ||
+                       listed[strips[s - 1].first].x / width != listed[strip.first].x / width));
+            next = strip.last;
+        }
+        CHECK(next == listed.size());
+        CHECK(cells.strip_fluid() == fluid.size());
+        std::sort(seen.begin(), seen.end());
+        CHECK(seen == with_fluid);
+    }
+}

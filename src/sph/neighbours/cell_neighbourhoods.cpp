@@ -91,6 +91,54 @@ void CellNeighbourhoods<D>::build(std::span<const Vec<D>> fluid, std::span<const
     }
     max_candidates_ = most;
     tiled_ready_ = false;
+    if constexpr (D == 2)
+        make_strips();
+}
+
+// By one thread: a few hundred cells for thousands of particles. The cells
+// come along the Morton curve, on which a row's cells are in order of x, so
+// a stable counting sort by row puts them row by row, each row in order;
+// a sparse grid (rows far more than cells: a splash's stray particle) sorts
+// them instead.
+template <int D>
+void CellNeighbourhoods<D>::make_strips() {
+    by_row_.clear();
+    std::uint32_t low = std::numeric_limits<std::uint32_t>::max(), high = 0;
+    for (std::size_t c = 0; c < grid_.cell_count(); ++c)
+        if (fluid_end_[c] > grid_.cell_begin(c)) {
+            const Coordinates at = grid_.coordinates(c);
+            const StripCell cell{static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(at[0]),
+                                 static_cast<std::uint32_t>(at[1])};
+            by_row_.push_back(cell);
+            low = std::min(low, cell.y);
+            high = std::max(high, cell.y);
+        }
+    strips_.clear();
+    strip_cells_.resize(by_row_.size());
+    const std::size_t rows = by_row_.empty() ? 0 : std::size_t(high - low) + 1;
+    if (rows <= 4 * by_row_.size() + 64) {
+        row_start_.assign(rows + 1, 0);
+        for (const StripCell& cell : by_row_)
+            ++row_start_[cell.y - low + 1];
+        for (std::size_t r = 0; r < rows; ++r)
+            row_start_[r + 1] += row_start_[r];
+        for (const StripCell& cell : by_row_)
+            strip_cells_[row_start_[cell.y - low]++] = cell;
+    } else {
+        strip_cells_ = by_row_;
+        std::stable_sort(strip_cells_.begin(), strip_cells_.end(),
+                         [](const StripCell& a, const StripCell& b) { return a.y < b.y; });
+    }
+    std::uint32_t fluid = 0;
+    for (std::size_t i = 0; i < strip_cells_.size(); ++i) {
+        const StripCell cell = strip_cells_[i];
+        if (i == 0 || cell.y != strip_cells_[i - 1].y ||
+            cell.x / strip_width != strip_cells_[i - 1].x / strip_width)
+            strips_.push_back({static_cast<std::uint32_t>(i), 0, cell.y, fluid});
+        strips_.back().last = static_cast<std::uint32_t>(i) + 1;
+        fluid += fluid_end_[cell.cell] - grid_.cell_begin(cell.cell);
+    }
+    strip_fluid_ = fluid;
 }
 
 template <int D>

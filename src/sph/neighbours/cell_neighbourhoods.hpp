@@ -120,6 +120,30 @@ class CellNeighbourhoods {
     Coordinates tile_halo(std::size_t c, std::span<HaloCell, halo_cells> halo) const;
     Coordinates coordinates(std::size_t c) const { return grid_.coordinates(c); }
 
+    // 2D, after each build: the cells with fluid row by row (y, then x), in
+    // strips of at most strip_width cells of one row that share x /
+    // strip_width. A pass copies the three rows around a strip once, a
+    // column of three cells after another, so that each cell's 3 x 3
+    // neighbourhood is one run of the copy (sph/single_precision/
+    // cell_passes.hpp); a strip's columns fixed on the grid, not by where a
+    // thread starts, keep the copies' offsets and the sums' order the same
+    // with any thread count. fluid_before: the fluid particles of the strips
+    // before, for splitting them among threads.
+    static constexpr int strip_width = 8;
+    struct StripCell {
+        std::uint32_t cell, x, y; // the cell, its column and row
+    };
+    struct Strip {
+        std::uint32_t first, last; // its cells: strip_cells()[first .. last)
+        std::uint32_t y;           // its row
+        std::uint32_t fluid_before;
+    };
+    std::span<const Strip> strips() const { return strips_; }
+    std::span<const StripCell> strip_cells() const { return strip_cells_; }
+    std::size_t strip_fluid() const { return strip_fluid_; } // all the strips' fluid
+    Range range_at(const Coordinates& at) const { return grid_.range_at(at); }
+    Vec<D> grid_point(const std::array<Real, D>& at) const { return grid_.grid_point(at); }
+
     // The most candidates of any cell with fluid: the size of a pass's buffers.
     std::size_t max_candidates() const { return max_candidates_; }
     // Sorted entries (fluid and walls).
@@ -143,6 +167,12 @@ class CellNeighbourhoods {
     // where each tile starts among them.
     std::array<std::vector<std::uint32_t>, colours> colour_cells_, colour_tiles_;
     std::size_t max_candidates_ = 0;
+    // 2D: strips() and their scratch.
+    void make_strips();
+    std::vector<Strip> strips_;
+    std::vector<StripCell> strip_cells_, by_row_;
+    std::vector<std::uint32_t> row_start_;
+    std::size_t strip_fluid_ = 0;
 };
 
 } // namespace sph

@@ -95,6 +95,14 @@ class SortedGrid final : public NeighbourSearch<D> {
     using Coordinates = std::array<std::int64_t, D>;
     Coordinates coordinates(std::size_t c) const;
     Range range_at(const Coordinates& at) const;
+    // The point at grid coordinates `at` (fractions of a cell too): the
+    // grid's origin plus `at` cells along each axis.
+    Vec<D> grid_point(const std::array<Real, D>& at) const {
+        Vec<D> x;
+        for (int a = 0; a < D; ++a)
+            x[a] = origin_[a] + (inverse_cell_size_[a] > 0 ? at[a] / inverse_cell_size_[a] : 0);
+        return x;
+    }
     // The runs of the (up to 3^D) occupied cells around cell c, c included,
     // by ascending position; returns how many.
     using NeighbourRuns = std::array<Range, D == 2 ? 9 : 27>;

@@ -89,7 +89,8 @@ class CellPasses {
     // read the tiles' neighbourhoods, not each cell's runs.
     void find_cells(std::span<const Vec<D>> fluid, const BoundaryParticles<D>* boundary,
                     Real radius, PairTerms pair_terms, const CellSkin<D>& skin) {
-        const bool cell_runs = D == 2 || pair_terms != PairTerms::once;
+        // 2D reads strips(), 3D each pair once its tiles'.
+        const bool cell_runs = D == 3 && pair_terms != PairTerms::once;
         near_saved_ = false;
         halos_saved_ = false;
         if (D == 2 && skin.width > 0) {
@@ -402,19 +403,23 @@ class CellPasses {
         int run_count = 0;
         std::size_t unsaved = 0; // particles whose NearBlocks did not fit
         std::uint32_t own_at = 0, own_begin = 0;
+        // 2D: the cell's candidates start here in the buffers (its strip's
+        // copy), and where each column of the strip's copy starts.
+        std::size_t at = 0;
+        std::array<std::uint32_t, CellNeighbourhoods<D>::strip_width + 3> column_at{};
 
         Lanes lanes() {
-            return {x[0].data(),
-                    x[1].data(),
+            return {x[0].data() + at,
+                    x[1].data() + at,
                     D == 3 ? x[D - 1].data() : nullptr,
-                    velocity[0].data(),
-                    velocity[1].data(),
+                    velocity[0].data() + at,
+                    velocity[1].data() + at,
                     D == 3 ? velocity[D - 1].data() : nullptr,
-                    mass.data(),
-                    density.data(),
-                    pressure_term.data(),
-                    volume.data(),
-                    wall.data(),
+                    mass.data() + at,
+                    density.data() + at,
+                    pressure_term.data() + at,
+                    volume.data() + at,
+                    wall.data() + at,
                     padded,
                     near_blocks.data(),
                     runs.data(),
@@ -470,7 +475,34 @@ class CellPasses {
     // its own neighbourhood, 14 cells, field by field: 29% of the 3D step.
     template <class Fields, class Work>
     void for_each_cell(int parts, const Fields& fields, const Work& work) {
-        if (D == 2 || parts == 0) {
+        if constexpr (D == 2) {
+            prepare_buffers();
+            const auto strips = cells_.strips();
+            const auto strip_cells = cells_.strip_cells();
+            // Each thread one run of consecutive strips, the runs of about
+            // as many particles (sph/thread_runs.hpp).
+#pragma omp parallel
+            {
+                Buffers& b = buffers_[omp_get_thread_num()];
+                for (const std::size_t s :
+                     this_thread_run(strips.size(), cells_.strip_fluid(),
+                                     [&](std::size_t k) { return strips[k].fluid_before; })) {
+                    const auto& strip = strips[s];
+                    const Vec<D> reference = copy_strip(strip, b, fields);
+                    const std::uint32_t first_x = strip_cells[strip.first].x;
+                    for (std::uint32_t i = strip.first; i < strip.last; ++i) {
+                        // Columns x - 1 .. x + 1: those after may follow in
+                        // the padded run, all out of reach.
+                        const std::uint32_t column = strip_cells[i].x - first_x;
+                        b.at = b.column_at[column];
+                        b.padded = (b.column_at[column + 3] - b.at + float_lanes - 1) /
+                                   float_lanes * float_lanes;
+                        work(cells_.cell(strip_cells[i].cell), b, reference);
+                    }
+                    b.at = 0;
+                }
+            }
+        } else if (parts == 0) {
             prepare_buffers();
             const std::size_t count = cells_.cell_count();
             const std::size_t particles = cells_.sorted_count();
@@ -578,6 +610,56 @@ class CellPasses {
         const std::size_t size = cells_.max_candidates() + 3 * skip_block + 2 * float_lanes;
         for (Buffers& b : buffers_)
             b.reserve(size);
+    }
+
+    // 2D: copies the three rows of cells around the strip into b, a column
+    // after another from the one before its first cell to the one after its
+    // last, each column's cells from the row below up (fluid and walls);
+    // b.column_at[i] is where column first - 1 + i starts, the last entry
+    // where the copy ends, and a vector of padding follows. The positions
+    // are offsets from the returned reference, a point fixed on the grid
+    // for the strip's columns: the middle of the strip_width columns that
+    // hold it, half a cell up its row, at most strip_width / 2 + 1.5 cells
+    // from any candidate (in float, x_ij then errs by a few 1e-7 of the
+    // spacing at most).
+    template <class Fields>
+    [[gnu::noinline]] Vec<D> copy_strip(const typename CellNeighbourhoods<D>::Strip& strip,
+                                        Buffers& b, const Fields& fields) const {
+        constexpr std::uint32_t width = CellNeighbourhoods<D>::strip_width;
+        const auto cells = cells_.strip_cells();
+        const std::int64_t first = cells[strip.first].x, last = cells[strip.last - 1].x;
+        b.pieces.clear();
+        std::uint32_t at = 0;
+        int column = 0;
+        for (std::int64_t x = first - 1; x <= last + 1; ++x, ++column) {
+            b.column_at[column] = at;
+            for (std::int64_t y = std::int64_t(strip.y) - 1; y <= std::int64_t(strip.y) + 1; ++y) {
+                const Range r = cells_.range_at({x, y});
+                if (r.end > r.begin) {
+                    b.pieces.push_back({r.begin, r.end, at});
+                    at += r.end - r.begin;
+                }
+            }
+        }
+        b.column_at[column] = at;
+        b.reserve(at);
+        const Vec<D> reference = cells_.grid_point(
+            {Real(first / width * width + width / 2), Real(strip.y) + Real(0.5)});
+        // Whole vectors past each piece's end, as gather_positions does: the
+        // next piece, or the padding, written after, overwrites them.
+        for (int a = 0; a < D; ++a) {
+            const PositionCopy copy{cells_.sorted_positions(a).data(), b.x[a].data(), reference[a]};
+            for (const auto& piece : b.pieces)
+                copy(piece.begin, piece.end, piece.at);
+            fill_lanes(b.x[a].data() + at, 1e18f);
+        }
+        fields(b, [&](const std::vector<float>& field, std::vector<float>& out, float padding) {
+            const FieldCopy copy{field.data(), out.data(), padding};
+            for (const auto& piece : b.pieces)
+                copy(piece.begin, piece.end, piece.at);
+            fill_lanes(out.data() + at, padding);
+        });
+        return reference;
     }
 
     // 3D: where the tile's neighbourhood goes in b: the fluid of its cells a

@@ -643,8 +643,8 @@ class CellPasses {
         }
         b.column_at[column] = at;
         b.reserve(at);
-        const Vec<D> reference = cells_.grid_point(
-            {Real(first / width * width + width / 2), Real(strip.y) + Real(0.5)});
+        const Vec<D> reference =
+            cells_.grid_point({Real(first / width * width + width / 2), Real(strip.y) + Real(0.5)});
         // Whole vectors past each piece's end, as gather_positions does: the
         // next piece, or the padding, written after, overwrites them.
         for (int a = 0; a < D; ++a) {

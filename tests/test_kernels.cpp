@@ -5,6 +5,7 @@
 #include "sph/lattice.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 
 using namespace sph;
 
@@ -94,6 +95,32 @@ TEST_CASE("poly6 W_r2 equals W", "[kernels]") {
     for (Real r : {0.0, 0.05, 0.2, 0.29, 0.3, 0.5}) {
         CHECK(k2.W_r2(r * r) == Approx(k2.W(r)));
         CHECK(k3.W_r2(r * r) == Approx(k3.W(r)));
+    }
+}
+
+// The float kernels' constants apart from their shapes (the single-precision
+// cell passes multiply a sum by the constant once): their product is W and
+// dW/dr / r, to float's rounding, at every r, 0 from r = h on.
+TEMPLATE_TEST_CASE("float kernels: scale times shape is W and dW/dr / r", "[kernels]",
+                   (CubicSpline<2, float>), (CubicSpline<3, float>), (WendlandC2<2, float>),
+                   (WendlandC2<3, float>)) {
+    for (const Real h : {1.0, 0.013}) {
+        const TestType kernel(h);
+        const float largest_W = kernel.W(0), largest_g = std::abs(kernel.dW_over_r(float(h / 2)));
+        for (int i = 0; i <= 220; ++i) {
+            const auto r = float(h * i / 200.0);
+            INFO("h = " << h << ", r = " << r);
+            CHECK(std::abs(kernel.W_scale() * kernel.W_shape(r) - kernel.W(r)) <=
+                  2e-6f * largest_W);
+            if (i > 0)
+                CHECK(std::abs(kernel.dW_over_r_scale() * kernel.dW_over_r_shape(r) -
+                               kernel.dW_over_r(r)) <= 2e-6f * std::abs(kernel.dW_over_r(r)) +
+                                                           1e-7f * largest_g);
+            if (r >= float(h)) {
+                CHECK(kernel.W_shape(r) == 0);
+                CHECK(kernel.dW_over_r_shape(r) == 0);
+            }
+        }
     }
 }
 

@@ -159,6 +159,22 @@ struct CubicSpline {
         out = q >= 1 ? V{}
                      : (q <= T(0.5) ? norm * 6 * (3 * q - 2) * inverse_h * inverse_h : outer / r);
     }
+    // W = W_scale() W_shape(r) and dW_over_r = dW_over_r_scale()
+    // dW_over_r_shape(r) (in float the products round otherwise): a pass
+    // summing terms linear in W or in the gradient multiplies by the
+    // constant once, after the sum (the single-precision cell passes).
+    T W_scale() const { return norm; }
+    T W_shape(T r) const {
+        const T q = r * inverse_h;
+        const T a = 1 - q;
+        return q >= 1 ? T(0) : (q <= T(0.5) ? 6 * (q * q * q - q * q) + 1 : 2 * (a * a * a));
+    }
+    T dW_over_r_scale() const { return norm * 6 * inverse_h; }
+    T dW_over_r_shape(T r) const {
+        const T q = r * inverse_h;
+        const T a = 1 - q;
+        return q >= 1 ? T(0) : (q <= T(0.5) ? (3 * q - 2) * inverse_h : -(a * a) / r);
+    }
     Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
 };
 
@@ -195,6 +211,19 @@ struct WendlandC2 {
         const V q = r * inverse_h;
         const V a = 1 - q;
         out = q < 1 ? -20 * norm * inverse_h * inverse_h * (a * a * a) : V{};
+    }
+    // The constants apart, as in CubicSpline.
+    T W_scale() const { return norm; }
+    T W_shape(T r) const {
+        const T q = r * inverse_h;
+        const T a = 1 - q;
+        return q < 1 ? (a * a * a * a) * (1 + 4 * q) : T(0);
+    }
+    T dW_over_r_scale() const { return -20 * norm * inverse_h * inverse_h; }
+    T dW_over_r_shape(T r) const {
+        const T q = r * inverse_h;
+        const T a = 1 - q;
+        return q < 1 ? a * a * a : T(0);
     }
     Vec<D> grad(const Vec<D>& x, Real r) const { return Real(dW_over_r(T(r))) * x; }
 };

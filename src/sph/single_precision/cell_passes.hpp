@@ -165,15 +165,18 @@ class CellPasses {
                 const Lanes l = b.lanes();
                 for (std::uint32_t k = cell.begin; k < cell.fluid_end; ++k) {
                     const FVec x_i = offset(k, reference);
+                    // The kernel's constant times the sum, not each term.
                     const auto term = [=](std::size_t m) {
                         const FVec x_ij = x_i - l.position(m);
                         const float r2 = glm::dot(x_ij, x_ij);
-                        return l.mass[m] * kernel.W(std::sqrt(r2));
+                        return l.mass[m] * kernel.W_shape(std::sqrt(r2));
                     };
                     if constexpr (D == 2)
-                        state.density[order[k]] = sum_candidates<float>(l.padded, term);
+                        state.density[order[k]] =
+                            kernel.W_scale() * sum_candidates<float>(l.padded, term);
                     else if (!once)
                         state.density[order[k]] =
+                            kernel.W_scale() *
                             sum_pairs_once<float, 0>(l, k, x_i, kernel.h, term, {});
                     else {
                         sums_[0][k] +=
@@ -194,7 +197,9 @@ class CellPasses {
             }
             if (unsaved * 100 > n && near_slot_size_ < NearBlocks::largest_slot)
                 next_near_slot_size_ = 2 * near_slot_size_;
-            finish([&](std::uint32_t k, const FVec& sum) { state.density[order[k]] = sum[0]; });
+            finish([&](std::uint32_t k, const FVec& sum) {
+                state.density[order[k]] = kernel.W_scale() * sum[0];
+            });
             near_saved_ = true;
             near_support_ = kernel.h;
         }
@@ -213,7 +218,7 @@ class CellPasses {
         for (int a = 0; a < D; ++a)
             resize_with_headroom(sorted_.velocity[a], total + float_lanes);
         for (auto* field : {&sorted_.mass, &sorted_.density, &sorted_.pressure_term,
-                            &sorted_.volume, &sorted_.wall})
+                            &sorted_.volume, &sorted_.own_weight})
             resize_with_headroom(*field, total + float_lanes);
 #pragma omp parallel for schedule(static)
         for (std::size_t k = 0; k < total; ++k) {
@@ -228,20 +233,21 @@ class CellPasses {
                 sorted_.density[k] = float(rho);
                 sorted_.pressure_term[k] = float(state.pressure[j] / (rho * rho));
                 sorted_.volume[k] = float(params.mass / rho);
-                sorted_.wall[k] = 0;
+                sorted_.own_weight[k] = 1;
             } else {
                 const Real volume = boundary->volumes()[cells_.wall(j - n)];
                 sorted_.mass[k] = float(params.rest_density * volume);
                 sorted_.density[k] = 0; // the fluid particle's, in the loop
                 sorted_.pressure_term[k] = 0;
                 sorted_.volume[k] = float(volume);
-                sorted_.wall[k] = 1;
+                sorted_.own_weight[k] = 2;
             }
         }
         const bool once = D == 3 && params.pair_terms == PairTerms::once;
         const bool near_saved = once && near_saved_ && near_support_ == kernel.h;
         const bool hydrostatic_walls = params.wall_gravity != Vec<D>(0);
         const FVec wall_gravity(params.wall_gravity);
+        const float scale = -kernel.dW_over_r_scale();
         // Compiled for each set of viscosities (PairViscosities::dispatch) and
         // wall pressure: a test in the loop would keep it from vectorising
         // (measured: the whole run 3x slower).
@@ -259,7 +265,7 @@ class CellPasses {
                     copy(sorted_.velocity[a], b.velocity[a], 0.f);
                 copy(sorted_.mass, b.mass, 0.f);
                 copy(sorted_.pressure_term, b.pressure_term, 0.f);
-                copy(sorted_.wall, b.wall, 0.f);
+                copy(sorted_.own_weight, b.own_weight, 0.f);
                 if constexpr (artificial)
                     copy(sorted_.density, b.density, 1.f);
                 if constexpr (laminar)
@@ -282,28 +288,34 @@ class CellPasses {
                             const float r2 = glm::dot(x_ij, x_ij);
                             const float v_dot_x = glm::dot(v_ij, x_ij);
                             const float r = std::sqrt(r2);
-                            const float g = kernel.dW_over_r(r);
+                            // The kernel's constant, -1 times, multiplies the
+                            // sum, not each term (all are linear in it).
+                            const float g = kernel.dW_over_r_shape(r);
                             // A wall's pressure term and density are stored as 0
-                            // and its `wall` as 1, so these sums pick exactly the
-                            // fluid's or the wall's value. Not a select: GCC made
+                            // and its own_weight as 2 (a fluid particle's 1), so
+                            // these sums are exactly the fluid pair's or twice
+                            // particle i's (p_b = p_i, rho_b = rho_i), each one
+                            // product and sum, rounded once. Not a select: GCC made
                             // the load under one a masked load, and then kept the
                             // loop's two sums in memory, a store and a load in the
                             // critical path of every vector of candidates.
-                            const float wall = l.wall[m];
-                            float p_b = pt_i;
-                            // (p_i + p_b) / rho_i^2 with the wall's hydrostatic rise,
-                            // p_b = max(p_i + rho_i g . (x_b - x_i), 0).
-                            if constexpr (hydrostatic)
-                                p_b = std::max(pt_i - glm::dot(wall_gravity, x_ij) * inverse_rho_i,
-                                               0.f);
-                            float factor = pt_i + (l.pressure_term[m] + wall * p_b);
+                            const float own = l.own_weight[m];
+                            float factor;
+                            if constexpr (hydrostatic) {
+                                // (p_i + p_b) / rho_i^2 with the wall's hydrostatic
+                                // rise, p_b = max(p_i + rho_i g . (x_b - x_i), 0).
+                                const float p_b = std::max(
+                                    pt_i - glm::dot(wall_gravity, x_ij) * inverse_rho_i, 0.f);
+                                factor = pt_i + (l.pressure_term[m] + (own - 1) * p_b);
+                            } else
+                                factor = own * pt_i + l.pressure_term[m];
                             if constexpr (artificial)
-                                factor += Pi(v_dot_x, rho_i + (l.density[m] + wall * rho_i), r2);
-                            const float pressure = -l.mass[m] * factor * g;
+                                factor += Pi(v_dot_x, own * rho_i + l.density[m], r2);
+                            const float pressure = l.mass[m] * factor * g;
                             float viscous = 0;
                             if constexpr (laminar)
                                 viscous = viscous_scale * morris(l.volume[m], r2 * g, r2);
-                            return pressure * x_ij + viscous * v_ij;
+                            return pressure * x_ij - viscous * v_ij;
                         };
                         // Between fluid particles the term is antisymmetric (the
                         // same mass; p_i/rho_i^2 + p_j/rho_j^2, Pi_ij and the
@@ -311,10 +323,10 @@ class CellPasses {
                         // the candidate's reaction is -1 times it.
                         if constexpr (D == 2)
                             state.acceleration[order[k]] =
-                                Vec<D>(sum_candidates<FVec>(l.padded, term));
+                                Vec<D>(scale * sum_candidates<FVec>(l.padded, term));
                         else if (!once)
-                            state.acceleration[order[k]] =
-                                Vec<D>(sum_pairs_once<FVec, 0>(l, k, x_i, kernel.h, term, {}));
+                            state.acceleration[order[k]] = Vec<D>(
+                                scale * sum_pairs_once<FVec, 0>(l, k, x_i, kernel.h, term, {}));
                         else {
                             const FVec a_i = sum_pairs_once<FVec, -1>(
                                 l, k, x_i, kernel.h, term, b.reactions(),
@@ -326,7 +338,7 @@ class CellPasses {
                 });
             if (once)
                 finish([&](std::uint32_t k, const FVec& sum) {
-                    state.acceleration[order[k]] = Vec<D>(sum);
+                    state.acceleration[order[k]] = Vec<D>(scale * sum);
                 });
         };
         viscosities.dispatch([&](auto artificial, auto laminar) {
@@ -342,7 +354,7 @@ class CellPasses {
     // Per sorted entry, in float.
     struct SortedFields {
         std::array<std::vector<float>, D> velocity;
-        std::vector<float> mass, density, pressure_term, volume, wall;
+        std::vector<float> mass, density, pressure_term, volume, own_weight;
     };
     // 3D: a run of candidates in a thread's buffers, [begin, end), or,
     // `after_own`, [the particle's own entry + 1, end). Those with
@@ -359,7 +371,7 @@ class CellPasses {
     // (through a reference to the vectors it keeps the loop scalar).
     struct Lanes {
         const float *x, *y, *z, *vx, *vy, *vz; // z, vz: 3D only
-        const float *mass, *density, *pressure_term, *volume, *wall;
+        const float *mass, *density, *pressure_term, *volume, *own_weight;
         std::size_t padded;
         std::uint32_t* near_blocks; // scratch: a block index per block of the runs
         const Run* runs;            // 3D: those without reaction first
@@ -391,7 +403,7 @@ class CellPasses {
     // cost 2D a third of the second thread's gain.
     struct alignas(64) Buffers {
         std::array<std::vector<float>, D> x, velocity;
-        std::vector<float> mass, density, pressure_term, volume, wall;
+        std::vector<float> mass, density, pressure_term, volume, own_weight;
         std::vector<std::uint32_t> near_blocks;
         // 3D, a tile at a time: the terms the tile's particles gave each
         // fluid candidate (reaction[0] alone for the density).
@@ -429,7 +441,7 @@ class CellPasses {
                     density.data() + at,
                     pressure_term.data() + at,
                     volume.data() + at,
-                    wall.data() + at,
+                    own_weight.data() + at,
                     padded,
                     near_blocks.data(),
                     runs.data(),
@@ -455,7 +467,7 @@ class CellPasses {
                 if constexpr (D == 3)
                     resize_with_headroom(reaction[a], size);
             }
-            for (auto* field : {&mass, &density, &pressure_term, &volume, &wall})
+            for (auto* field : {&mass, &density, &pressure_term, &volume, &own_weight})
                 resize_with_headroom(*field, size);
             resize_with_headroom(near_blocks, size / skip_block + max_runs + 1);
         }

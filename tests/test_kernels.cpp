@@ -114,8 +114,8 @@ TEMPLATE_TEST_CASE("float kernels: scale times shape is W and dW/dr / r", "[kern
                   2e-6f * largest_W);
             if (i > 0)
                 CHECK(std::abs(kernel.dW_over_r_scale() * kernel.dW_over_r_shape(r) -
-                               kernel.dW_over_r(r)) <= 2e-6f * std::abs(kernel.dW_over_r(r)) +
-                                                           1e-7f * largest_g);
+                               kernel.dW_over_r(r)) <=
+                      2e-6f * std::abs(kernel.dW_over_r(r)) + 1e-7f * largest_g);
             if (r >= float(h)) {
                 CHECK(kernel.W_shape(r) == 0);
                 CHECK(kernel.dW_over_r_shape(r) == 0);

@@ -44,7 +44,8 @@ class CellNeighbourhoods {
     // `walls_within`, when given, lists the walls near the fluid without
     // reading them all. Without `cell_runs` a cell's runs are its own
     // particles only: for a pass that reads tile_halo instead (3D, each
-    // pair once), to which the 27 lookups a cell cost 3% of the step.
+    // pair once), to which the 27 lookups a cell cost 3% of the step, or
+    // strips() (2D).
     // `walls_inside`: every wall lies in `walls_bounds` (none moves), so the
     // grid's box is the fluid's and that one, found without reading the walls.
     void build(std::span<const Vec<D>> fluid, std::span<const Vec<D>> walls, Real radius,
@@ -144,7 +145,8 @@ class CellNeighbourhoods {
     Range range_at(const Coordinates& at) const { return grid_.range_at(at); }
     Vec<D> grid_point(const std::array<Real, D>& at) const { return grid_.grid_point(at); }
 
-    // The most candidates of any cell with fluid: the size of a pass's buffers.
+    // The most candidates of any cell with fluid (its runs'): the size of a
+    // pass's buffers, which a 2D pass grows to a strip's copy.
     std::size_t max_candidates() const { return max_candidates_; }
     // Sorted entries (fluid and walls).
     std::size_t sorted_count() const { return grid_.order().size(); }

@@ -313,7 +313,7 @@ class CellPasses {
                                 factor += Pi(v_dot_x, own * rho_i + l.density[m], r2);
                             const float pressure = l.mass[m] * factor * g;
                             // Without the laminar term no `- 0 * v_ij`: GCC keeps
-                            // it (v_ij may be infinite), 2 of 44 operations.
+                            // it (v_ij may be infinite), 2 operations a vector.
                             if constexpr (!laminar)
                                 return pressure * x_ij;
                             else
